@@ -1,0 +1,277 @@
+#include "mfs_particles.h"
+
+#include <gsl/gsl_rng.h>
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "mfs_status.h"
+
+void mfs_box_delta(const mfs_box *box, const double *a, const double *b, double *d)
+{
+  for (int k = 0; k < box->dim; k++) {
+    double t = b[k] - a[k];
+    if (box->periodic) {
+      double L = box->hi[k] - box->lo[k];
+      t -= L * nearbyint(t / L);
+    }
+    d[k] = t;
+  }
+}
+
+void mfs_particles_free(mfs_particles *p)
+{
+  if (!p)
+    return;
+  free(p->x);
+  free(p->vol);
+  free(p->flags);
+  free(p->ij);
+  free(p->conn);
+  free(p->cellx);
+  free(p);
+}
+
+double mfs_cell_measure(const mfs_particles *p, size_t c)
+{
+  const double *v = p->cellx + c * (size_t)p->nvert * (size_t)p->dim;
+  if (p->dim == 1)
+    return fabs(v[1] - v[0]);
+  double s = 0.0; /* shoelace */
+  for (int k = 0; k < p->nvert; k++) {
+    int l = (k + 1) % p->nvert;
+    s += v[2 * k] * v[2 * l + 1] - v[2 * l] * v[2 * k + 1];
+  }
+  return 0.5 * s;
+}
+
+double mfs_particles_domain_volume(const mfs_particles *p)
+{
+  double s = 0.0;
+  for (size_t c = 0; c < p->ncell; c++)
+    s += mfs_cell_measure(p, c);
+  return s;
+}
+
+/* Node index of lattice site (i, j), wrapping when periodic; -1 outside. */
+static int site(const mfs_particles *p, int i, int j, int *si, int *sj)
+{
+  *si = *sj = 0;
+  if (p->box.periodic) {
+    if (i >= p->nx) {
+      i -= p->nx;
+      *si = 1;
+    }
+    if (j >= p->ny) {
+      j -= p->ny;
+      *sj = 1;
+    }
+  } else if (i >= p->nx || j >= p->ny) {
+    return -1;
+  }
+  return j * p->nx + i;
+}
+
+/* Append cell with vertex sites (i[k], j[k]); skipped if a site is outside. */
+static void add_cell(mfs_particles *p, size_t *nc, const int *i, const int *j)
+{
+  int nodes[4], sx[4], sy[4];
+  for (int k = 0; k < p->nvert; k++) {
+    nodes[k] = site(p, i[k], j[k], &sx[k], &sy[k]);
+    if (nodes[k] < 0)
+      return;
+  }
+  double Lx = p->box.hi[0] - p->box.lo[0];
+  double Ly = p->dim > 1 ? p->box.hi[1] - p->box.lo[1] : 0.0;
+  for (int k = 0; k < p->nvert; k++) {
+    p->conn[*nc * p->nvert + k] = nodes[k];
+    double *v = p->cellx + (*nc * p->nvert + k) * p->dim;
+    v[0] = p->x[nodes[k] * p->dim] + sx[k] * Lx;
+    if (p->dim > 1)
+      v[1] = p->x[nodes[k] * p->dim + 1] + sy[k] * Ly;
+  }
+  (*nc)++;
+}
+
+static void build_cells(mfs_particles *p, mfs_cell_kind kind)
+{
+  size_t nc = 0;
+  int per = p->box.periodic;
+  int ni = per ? p->nx : p->nx - 1;
+  int nj = per ? p->ny : p->ny - 1;
+  if (p->dim == 1) {
+    for (int i = 0; i < ni; i++) {
+      int ii[2] = {i, i + 1}, jj[2] = {0, 0};
+      add_cell(p, &nc, ii, jj);
+    }
+  } else if (p->lattice == MFS_LATTICE_SQUARE && kind == MFS_CELLS_QUAD) {
+    for (int j = 0; j < nj; j++)
+      for (int i = 0; i < ni; i++) {
+        int ii[4] = {i, i + 1, i + 1, i}, jj[4] = {j, j, j + 1, j + 1};
+        add_cell(p, &nc, ii, jj);
+      }
+  } else if (p->lattice == MFS_LATTICE_SQUARE) {
+    for (int j = 0; j < nj; j++)
+      for (int i = 0; i < ni; i++) {
+        if (kind == MFS_CELLS_TRI || ((i + j) & 1) == 0) {
+          int i1[3] = {i, i + 1, i + 1}, j1[3] = {j, j, j + 1};
+          int i2[3] = {i, i + 1, i}, j2[3] = {j, j + 1, j + 1};
+          add_cell(p, &nc, i1, j1);
+          add_cell(p, &nc, i2, j2);
+        } else {
+          int i1[3] = {i, i + 1, i}, j1[3] = {j, j, j + 1};
+          int i2[3] = {i + 1, i + 1, i}, j2[3] = {j, j + 1, j + 1};
+          add_cell(p, &nc, i1, j1);
+          add_cell(p, &nc, i2, j2);
+        }
+      }
+  } else { /* hexagonal: triangles between rows j and j+1 */
+    for (int j = 0; j < nj; j++)
+      for (int i = 0; i < ni; i++) {
+        if ((j & 1) == 0) {
+          int i1[3] = {i, i + 1, i}, j1[3] = {j, j, j + 1};
+          int i2[3] = {i + 1, i + 1, i}, j2[3] = {j, j + 1, j + 1};
+          add_cell(p, &nc, i1, j1);
+          add_cell(p, &nc, i2, j2);
+        } else {
+          int i1[3] = {i, i + 1, i}, j1[3] = {j, j + 1, j + 1};
+          int i2[3] = {i, i + 1, i + 1}, j2[3] = {j, j, j + 1};
+          add_cell(p, &nc, i1, j1);
+          add_cell(p, &nc, i2, j2);
+        }
+      }
+  }
+  p->ncell = nc;
+}
+
+static int check_spec(const mfs_lattice_spec *s)
+{
+  if (s->dim == 1 && s->lattice != MFS_LATTICE_LINE)
+    return MFS_EINVAL;
+  if (s->dim == 2 && s->lattice == MFS_LATTICE_LINE)
+    return MFS_EINVAL;
+  if (s->dim != 1 && s->dim != 2)
+    return MFS_EINVAL;
+  if (s->nx < 2 || (s->dim == 2 && s->ny < 2))
+    return MFS_EINVAL;
+  if (!(s->dx > 0.0) || s->gamma < 0.0 || !(s->perturb >= 0.0 && s->perturb < 0.5))
+    return MFS_EINVAL;
+  if (s->periodic && s->dim == 2 && s->lattice == MFS_LATTICE_HEX && (s->ny & 1))
+    return MFS_EINVAL;
+  if (s->periodic && s->dim == 2 && s->lattice == MFS_LATTICE_SQUARE &&
+      s->cells == MFS_CELLS_STAR && ((s->nx & 1) || (s->ny & 1)))
+    return MFS_EINVAL;
+  return MFS_OK;
+}
+
+static void perturb(mfs_particles *p, double frac, unsigned long seed)
+{
+  gsl_rng *rng = gsl_rng_alloc(gsl_rng_mt19937);
+  if (!rng)
+    return;
+  gsl_rng_set(rng, seed);
+  double h[2] = {p->dx, p->dy};
+  for (size_t I = 0; I < p->n; I++) {
+    for (int k = 0; k < p->dim; k++) {
+      double u = frac * h[k] * (2.0 * gsl_rng_uniform(rng) - 1.0);
+      unsigned f = p->flags[I];
+      /* boundary particles move only along their boundary; hexagonal
+       * boundaries (ragged) and corners not at all */
+      int fixed = (k == 0 && (f & (MFS_BND_XLO | MFS_BND_XHI))) ||
+                  (k == 1 && (f & (MFS_BND_YLO | MFS_BND_YHI))) ||
+                  (f && p->lattice == MFS_LATTICE_HEX);
+      if (!fixed)
+        p->x[I * p->dim + k] += u;
+    }
+  }
+  gsl_rng_free(rng);
+}
+
+mfs_particles *mfs_lattice_alloc(const mfs_lattice_spec *s, int *status)
+{
+  int st = check_spec(s);
+  mfs_particles *p = NULL;
+  if (st != MFS_OK)
+    goto fail;
+  st = MFS_ENOMEM;
+  p = calloc(1, sizeof *p);
+  if (!p)
+    goto fail;
+  int dim = s->dim;
+  p->dim = dim;
+  p->lattice = s->lattice;
+  p->nx = s->nx;
+  p->ny = dim == 1 ? 1 : s->ny;
+  p->n = (size_t)p->nx * (size_t)p->ny;
+  p->dx = s->dx;
+  double gamma = s->gamma > 0.0 ? s->gamma : 1.0;
+  p->dy = dim == 1 ? 0.0 : (s->lattice == MFS_LATTICE_HEX ? sqrt(3.0) / 2.0 * s->dx : gamma * s->dx);
+  p->a1[0] = s->dx;
+  p->a2[0] = s->lattice == MFS_LATTICE_HEX ? 0.5 * s->dx : 0.0;
+  p->a2[1] = p->dy;
+  p->box.dim = dim;
+  p->box.periodic = s->periodic;
+  p->x = malloc(p->n * dim * sizeof *p->x);
+  p->vol = calloc(p->n, sizeof *p->vol);
+  p->flags = calloc(p->n, 1);
+  p->ij = malloc(p->n * 2 * sizeof *p->ij);
+  if (!p->x || !p->vol || !p->flags || !p->ij)
+    goto fail;
+
+  for (int j = 0; j < p->ny; j++)
+    for (int i = 0; i < p->nx; i++) {
+      size_t I = (size_t)j * p->nx + i;
+      int odd = s->lattice == MFS_LATTICE_HEX && (j & 1);
+      p->x[I * dim] = i * s->dx + (odd ? 0.5 * s->dx : 0.0);
+      if (dim > 1)
+        p->x[I * dim + 1] = j * p->dy;
+      p->ij[2 * I] = s->lattice == MFS_LATTICE_HEX ? i - j / 2 : i;
+      p->ij[2 * I + 1] = j;
+      if (!s->periodic) {
+        unsigned f = 0;
+        if (i == 0)
+          f |= MFS_BND_XLO;
+        if (i == p->nx - 1)
+          f |= MFS_BND_XHI;
+        if (dim > 1 && j == 0)
+          f |= MFS_BND_YLO;
+        if (dim > 1 && j == p->ny - 1)
+          f |= MFS_BND_YHI;
+        p->flags[I] = (unsigned char)f;
+      }
+    }
+  p->box.lo[0] = p->box.lo[1] = 0.0;
+  if (s->periodic) {
+    p->box.hi[0] = p->nx * s->dx;
+    p->box.hi[1] = p->ny * p->dy;
+  } else {
+    p->box.hi[0] = (p->nx - 1) * s->dx + (s->lattice == MFS_LATTICE_HEX ? 0.5 * s->dx : 0.0);
+    p->box.hi[1] = (p->ny - 1) * p->dy;
+  }
+  if (s->perturb > 0.0)
+    perturb(p, s->perturb, s->seed);
+
+  mfs_cell_kind kind = s->lattice == MFS_LATTICE_SQUARE ? s->cells : MFS_CELLS_TRI;
+  p->nvert = dim == 1 ? 2 : (kind == MFS_CELLS_QUAD ? 4 : 3);
+  size_t maxcell = (size_t)p->nx * p->ny * (p->nvert == 3 ? 2 : 1);
+  p->conn = malloc(maxcell * p->nvert * sizeof *p->conn);
+  p->cellx = malloc(maxcell * p->nvert * dim * sizeof *p->cellx);
+  if (!p->conn || !p->cellx)
+    goto fail;
+  build_cells(p, kind);
+
+  /* cell-dual volumes: each cell's measure shared equally by its vertices */
+  for (size_t c = 0; c < p->ncell; c++) {
+    double m = mfs_cell_measure(p, c) / p->nvert;
+    for (int k = 0; k < p->nvert; k++)
+      p->vol[p->conn[c * p->nvert + k]] += m;
+  }
+  if (status)
+    *status = MFS_OK;
+  return p;
+fail:
+  mfs_particles_free(p);
+  if (status)
+    *status = st;
+  return NULL;
+}

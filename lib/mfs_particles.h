@@ -1,0 +1,71 @@
+/* Particle sets: lattices in 1D and 2D, finite or periodic boxes, seeded
+ * random perturbation, particle volumes, and the background cells (intervals,
+ * quadrilaterals, triangles) that quadrature rules are built on. */
+#ifndef MFS_PARTICLES_H
+#define MFS_PARTICLES_H
+
+#include <stddef.h>
+
+typedef enum { MFS_LATTICE_LINE, MFS_LATTICE_SQUARE, MFS_LATTICE_HEX } mfs_lattice_kind;
+
+/* How square cells are split: kept as quadrilaterals, cut by one diagonal
+ * (paper 003 Fig. 12b), or by alternating diagonals (the star, Fig. 12c). */
+typedef enum { MFS_CELLS_QUAD, MFS_CELLS_TRI, MFS_CELLS_STAR } mfs_cell_kind;
+
+/* Boundary flags of a particle of a finite box. */
+enum { MFS_BND_XLO = 1, MFS_BND_XHI = 2, MFS_BND_YLO = 4, MFS_BND_YHI = 8 };
+
+/* A box: [lo, hi] per direction, periodic (all directions) or not. */
+typedef struct {
+  int dim;
+  double lo[3], hi[3];
+  int periodic;
+} mfs_box;
+
+/* Displacement b - a, with the minimum image when the box is periodic. */
+void mfs_box_delta(const mfs_box *box, const double *a, const double *b, double *d);
+
+/* What to build. */
+typedef struct {
+  int dim;                  /* 1 or 2 */
+  mfs_lattice_kind lattice; /* line (dim 1), square or hex (dim 2) */
+  int nx, ny;               /* nodes per direction; ny unused in 1D */
+  double dx;                /* nearest-neighbour spacing */
+  double gamma;             /* dy/dx of the square lattice (1 if 0) */
+  int periodic;             /* periodic box: nx*dx by ny*dy, ny even for hex */
+  mfs_cell_kind cells;      /* square lattice only; hex is always triangles */
+  double perturb;           /* random shift per coordinate in [-p, p]*dx */
+  unsigned long seed;       /* GSL mt19937 seed of the perturbation */
+} mfs_lattice_spec;
+
+typedef struct {
+  int dim;
+  size_t n;
+  double *x;             /* n*dim coordinates */
+  double *vol;           /* n volumes: the cell dual (each cell's measure shared equally by its vertices) */
+  unsigned char *flags;  /* n boundary flags (MFS_BND_*), 0 in a periodic box */
+  int *ij;               /* n*2 integer lattice coordinates in the basis a1, a2 */
+  mfs_box box;           /* the domain */
+  mfs_lattice_kind lattice;
+  double dx, dy;         /* spacing; dy = gamma*dx (square) or sqrt(3)/2 dx (hex row spacing) */
+  double a1[2], a2[2];   /* lattice vectors */
+  int nx, ny;            /* as in the spec */
+  /* background cells */
+  int nvert;             /* 2 (interval), 3 (triangle), 4 (quadrilateral, counter-clockwise) */
+  size_t ncell;
+  int *conn;             /* ncell*nvert node indices */
+  double *cellx;         /* ncell*nvert*dim vertex coordinates, unwrapped across periodic edges */
+} mfs_particles;
+
+/* Build a lattice.  Returns NULL and sets *status (MFS_EINVAL for a bad
+ * spec, MFS_ENOMEM) on failure. */
+mfs_particles *mfs_lattice_alloc(const mfs_lattice_spec *spec, int *status);
+void mfs_particles_free(mfs_particles *p);
+
+/* Measure (length or area) of cell c, from its vertex coordinates. */
+double mfs_cell_measure(const mfs_particles *p, size_t c);
+
+/* Domain volume: the sum of the cell measures. */
+double mfs_particles_domain_volume(const mfs_particles *p);
+
+#endif

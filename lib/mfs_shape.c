@@ -1,0 +1,414 @@
+#include "mfs_shape.h"
+
+#include <math.h>
+#include <string.h>
+
+#include "mfs_status.h"
+
+#define MAXD 3
+#define MAXM 4
+
+size_t mfs_shape_work_len(int dim, int nn)
+{
+  /* kernel values (1 + dim + dim^2) and a Shepard scratch (1 + dim) per neighbour */
+  return (size_t)nn * (size_t)(2 + 2 * dim + dim * dim) + 8;
+}
+
+/* W, grad W, Hessian W with respect to X, per neighbour: kw[J*(1+dim+dim^2)]. */
+static void kernel_values(const mfs_shape_ctx *c, int nn, const double *d, int order, double *kw)
+{
+  int dim = c->dim, st = 1 + dim + dim * dim;
+  for (int J = 0; J < nn; J++) {
+    const double *dj = d + J * dim;
+    double r2 = 0.0;
+    for (int k = 0; k < dim; k++)
+      r2 += dj[k] * dj[k];
+    double r = sqrt(r2);
+    mfs_kernel_value kv = mfs_kernel_radial(c->kernel, dim, c->a, r);
+    double *o = kw + J * st;
+    o[0] = kv.W;
+    for (int k = 0; k < dim; k++) /* grad_X W(|X - X_J|) = W'(r) (X - X_J)/r */
+      o[1 + k] = -kv.dW_r * dj[k];
+    if (order >= 2) {
+      double t = r2 > 0.0 ? (kv.d2W - kv.dW_r) / r2 : 0.0;
+      for (int k = 0; k < dim; k++)
+        for (int l = 0; l < dim; l++)
+          o[1 + dim + k * dim + l] = (k == l ? kv.dW_r : 0.0) + t * dj[k] * dj[l];
+    }
+  }
+}
+
+/* Cholesky of the m x m SPD matrix A (row-major) into L; 0 on success. */
+static int cholesky(int m, const double *A, double *L)
+{
+  for (int i = 0; i < m; i++)
+    for (int j = 0; j <= i; j++) {
+      double s = A[i * m + j];
+      for (int k = 0; k < j; k++)
+        s -= L[i * m + k] * L[j * m + k];
+      if (i == j) {
+        if (!(s > 0.0))
+          return -1;
+        L[i * m + i] = sqrt(s);
+      } else {
+        L[i * m + j] = s / L[j * m + j];
+      }
+    }
+  return 0;
+}
+
+static void chol_solve(int m, const double *L, double *b)
+{
+  for (int i = 0; i < m; i++) {
+    double s = b[i];
+    for (int k = 0; k < i; k++)
+      s -= L[i * m + k] * b[k];
+    b[i] = s / L[i * m + i];
+  }
+  for (int i = m - 1; i >= 0; i--) {
+    double s = b[i];
+    for (int k = i + 1; k < m; k++)
+      s -= L[k * m + i] * b[k];
+    b[i] = s / L[i * m + i];
+  }
+}
+
+/* 1-norm reciprocal condition number from A and the explicit inverse. */
+static double rcond_from(int m, const double *A, const double *Ainv)
+{
+  double na = 0.0, ni = 0.0;
+  for (int j = 0; j < m; j++) {
+    double sa = 0.0, si = 0.0;
+    for (int i = 0; i < m; i++) {
+      sa += fabs(A[i * m + j]);
+      si += fabs(Ainv[i * m + j]);
+    }
+    na = sa > na ? sa : na;
+    ni = si > ni ? si : ni;
+  }
+  double rc = 1.0 / (na * ni);
+  return isfinite(rc) ? rc : 0.0;
+}
+
+/* Moving least squares with basis [1] (m = 1, Shepard) or [1, (Y - X)/a]
+ * (m = 1 + dim), weights mult_J W_J.  Derivatives by differentiating
+ * A gamma = p(X) (Belytschko et al. 1996): gamma' = A^-1 (p' - A' gamma), ...
+ * Output in out[J*os + ...] up to `order` (0, 1, 2). */
+static int mls_core(const mfs_shape_ctx *c, int m, int nn, const double *d, const double *kw,
+                    const double *mult, int order, double *out, int os, double *rcond)
+{
+  int dim = c->dim, st = 1 + dim + dim * dim;
+  double A[MAXM * MAXM] = {0}, dA[MAXD][MAXM * MAXM] = {{0}}, d2A[MAXD * MAXD][MAXM * MAXM] = {{0}};
+  double p[MAXM];
+  double ia = 1.0 / c->a;
+  for (int J = 0; J < nn; J++) {
+    const double *k = kw + J * st;
+    double s = mult ? mult[J] : 1.0;
+    p[0] = 1.0;
+    for (int i = 1; i < m; i++)
+      p[i] = d[J * dim + i - 1] * ia;
+    for (int i = 0; i < m; i++)
+      for (int j = 0; j <= i; j++) {
+        double pp = s * p[i] * p[j];
+        A[i * m + j] += pp * k[0];
+        if (order >= 1)
+          for (int q = 0; q < dim; q++)
+            dA[q][i * m + j] += pp * k[1 + q];
+        if (order >= 2)
+          for (int q = 0; q < dim * dim; q++)
+            d2A[q][i * m + j] += pp * k[1 + dim + q];
+      }
+  }
+  for (int i = 0; i < m; i++) /* symmetric fill */
+    for (int j = i + 1; j < m; j++) {
+      A[i * m + j] = A[j * m + i];
+      for (int q = 0; q < dim; q++)
+        dA[q][i * m + j] = dA[q][j * m + i];
+      for (int q = 0; q < dim * dim; q++)
+        d2A[q][i * m + j] = d2A[q][j * m + i];
+    }
+  double L[MAXM * MAXM] = {0}, Ainv[MAXM * MAXM];
+  *rcond = 0.0;
+  if (cholesky(m, A, L))
+    return MFS_ESINGULAR;
+  for (int j = 0; j < m; j++) {
+    double e[MAXM] = {0};
+    e[j] = 1.0;
+    chol_solve(m, L, e);
+    for (int i = 0; i < m; i++)
+      Ainv[i * m + j] = e[i];
+  }
+  *rcond = rcond_from(m, A, Ainv);
+  if (*rcond < c->rcond_min || *rcond == 0.0)
+    return MFS_ESINGULAR;
+
+  double g[MAXM], dg[MAXD][MAXM], d2g[MAXD * MAXD][MAXM];
+  for (int i = 0; i < m; i++)
+    g[i] = Ainv[i * m];
+  for (int q = 0; q < dim && order >= 1; q++) {
+    double r[MAXM];
+    for (int i = 0; i < m; i++) {
+      double s = (m > 1 && i == q + 1) ? ia : 0.0;
+      for (int j = 0; j < m; j++)
+        s -= dA[q][i * m + j] * g[j];
+      r[i] = s;
+    }
+    chol_solve(m, L, r);
+    memcpy(dg[q], r, sizeof r);
+  }
+  for (int q = 0; q < dim && order >= 2; q++)
+    for (int t = 0; t < dim; t++) {
+      double r[MAXM];
+      for (int i = 0; i < m; i++) {
+        double s = 0.0;
+        for (int j = 0; j < m; j++)
+          s -= dA[q][i * m + j] * dg[t][j] + dA[t][i * m + j] * dg[q][j] +
+               d2A[q * dim + t][i * m + j] * g[j];
+        r[i] = s;
+      }
+      chol_solve(m, L, r);
+      memcpy(d2g[q * dim + t], r, sizeof r);
+    }
+
+  for (int J = 0; J < nn; J++) {
+    const double *k = kw + J * st;
+    double s = mult ? mult[J] : 1.0;
+    double w = s * k[0], dw[MAXD], gp = 0.0, dgp[MAXD] = {0};
+    p[0] = 1.0;
+    for (int i = 1; i < m; i++)
+      p[i] = d[J * dim + i - 1] * ia;
+    for (int i = 0; i < m; i++)
+      gp += g[i] * p[i];
+    double *o = out + (size_t)J * os;
+    o[0] = gp * w;
+    if (order < 1)
+      continue;
+    for (int q = 0; q < dim; q++) {
+      dw[q] = s * k[1 + q];
+      for (int i = 0; i < m; i++)
+        dgp[q] += dg[q][i] * p[i];
+      o[1 + q] = dgp[q] * w + gp * dw[q];
+    }
+    if (order < 2)
+      continue;
+    for (int q = 0; q < dim; q++)
+      for (int t = 0; t < dim; t++) {
+        double d2gp = 0.0;
+        for (int i = 0; i < m; i++)
+          d2gp += d2g[q * dim + t][i] * p[i];
+        o[1 + dim + q * dim + t] = d2gp * w + dgp[q] * dw[t] + dgp[t] * dw[q] +
+                                   gp * s * k[1 + dim + q * dim + t];
+      }
+  }
+  return MFS_OK;
+}
+
+/* Inverse of a dim x dim matrix by Gauss-Jordan with partial pivoting. */
+static int small_inverse(int n, const double *A, double *Ai)
+{
+  double M[MAXD * 2 * MAXD];
+  for (int i = 0; i < n; i++)
+    for (int j = 0; j < 2 * n; j++)
+      M[i * 2 * n + j] = j < n ? A[i * n + j] : (j - n == i ? 1.0 : 0.0);
+  for (int col = 0; col < n; col++) {
+    int piv = col;
+    for (int i = col + 1; i < n; i++)
+      if (fabs(M[i * 2 * n + col]) > fabs(M[piv * 2 * n + col]))
+        piv = i;
+    if (M[piv * 2 * n + col] == 0.0)
+      return -1;
+    for (int j = 0; j < 2 * n; j++) {
+      double t = M[col * 2 * n + j];
+      M[col * 2 * n + j] = M[piv * 2 * n + j];
+      M[piv * 2 * n + j] = t;
+    }
+    double inv = 1.0 / M[col * 2 * n + col];
+    for (int j = 0; j < 2 * n; j++)
+      M[col * 2 * n + j] *= inv;
+    for (int i = 0; i < n; i++)
+      if (i != col) {
+        double f = M[i * 2 * n + col];
+        for (int j = 0; j < 2 * n; j++)
+          M[i * 2 * n + j] -= f * M[col * 2 * n + j];
+      }
+  }
+  for (int i = 0; i < n; i++)
+    for (int j = 0; j < n; j++)
+      Ai[i * n + j] = M[i * 2 * n + n + j];
+  return 0;
+}
+
+/* Correct the gradient vectors h_J stored in the gradient slots of out so
+ * that sum_J G_J (X_J - X)^T = I (paper 000 eqs 29-31): G_J = a h_J with
+ * a = C^-1, C = sum_J h_J (X_J - X)^T; with order 2 also d_n G_J from the
+ * stored d_n h_J.  In place. */
+static int correct_gradient(const mfs_shape_ctx *c, int nn, const double *d, int order,
+                            double *out, int os, double *rcond)
+{
+  int dim = c->dim;
+  double C[MAXD * MAXD] = {0}, a[MAXD * MAXD], S[MAXD] = {0};
+  double dC[MAXD][MAXD * MAXD] = {{0}}, da[MAXD][MAXD * MAXD];
+  for (int J = 0; J < nn; J++) {
+    const double *o = out + (size_t)J * os;
+    for (int l = 0; l < dim; l++) {
+      S[l] += o[1 + l];
+      for (int mm = 0; mm < dim; mm++) {
+        C[l * dim + mm] += o[1 + l] * d[J * dim + mm];
+        if (order >= 2)
+          for (int n = 0; n < dim; n++)
+            dC[n][l * dim + mm] += o[1 + dim + l * dim + n] * d[J * dim + mm];
+      }
+    }
+  }
+  *rcond = 0.0;
+  if (small_inverse(dim, C, a))
+    return MFS_ESINGULAR;
+  *rcond = rcond_from(dim, C, a);
+  if (*rcond < c->rcond_min || *rcond == 0.0)
+    return MFS_ESINGULAR;
+  if (order >= 2)
+    for (int n = 0; n < dim; n++) {
+      double t[MAXD * MAXD];
+      for (int l = 0; l < dim; l++) /* d(X_J - X)/dX_n = -e_n */
+        dC[n][l * dim + n] -= S[l];
+      for (int i = 0; i < dim; i++)
+        for (int j = 0; j < dim; j++) {
+          double s = 0.0;
+          for (int k = 0; k < dim; k++)
+            s += dC[n][i * dim + k] * a[k * dim + j];
+          t[i * dim + j] = s;
+        }
+      for (int i = 0; i < dim; i++)
+        for (int j = 0; j < dim; j++) {
+          double s = 0.0;
+          for (int k = 0; k < dim; k++)
+            s -= a[i * dim + k] * t[k * dim + j];
+          da[n][i * dim + j] = s;
+        }
+    }
+  for (int J = 0; J < nn; J++) {
+    double *o = out + (size_t)J * os;
+    double h[MAXD], dh[MAXD * MAXD];
+    memcpy(h, o + 1, dim * sizeof *h);
+    if (order >= 2)
+      memcpy(dh, o + 1 + dim, dim * dim * sizeof *dh);
+    for (int k = 0; k < dim; k++) {
+      double s = 0.0;
+      for (int l = 0; l < dim; l++)
+        s += a[k * dim + l] * h[l];
+      o[1 + k] = s;
+      if (order < 2)
+        continue;
+      for (int n = 0; n < dim; n++) {
+        double t = 0.0;
+        for (int l = 0; l < dim; l++)
+          t += da[n][k * dim + l] * h[l] + a[k * dim + l] * dh[l * dim + n];
+        o[1 + dim + k * dim + n] = t;
+      }
+    }
+  }
+  return MFS_OK;
+}
+
+static int sph_eval(const mfs_shape_ctx *c, int nn, const double *d, const double *v, int self,
+                    int order, double *out, double *work, double *rcond)
+{
+  (void)self;
+  int dim = c->dim, os = mfs_shape_ncomp(dim, order), st = 1 + dim + dim * dim;
+  kernel_values(c, nn, d, order, work);
+  for (int J = 0; J < nn; J++)
+    for (int i = 0; i < os; i++)
+      out[(size_t)J * os + i] = v[J] * work[J * st + i];
+  *rcond = 1.0;
+  return MFS_OK;
+}
+
+static int shepard_eval(const mfs_shape_ctx *c, int nn, const double *d, const double *v,
+                        int self, int order, double *out, double *work, double *rcond)
+{
+  (void)v;
+  (void)self;
+  kernel_values(c, nn, d, order, work);
+  return mls_core(c, 1, nn, d, work, NULL, order, out, mfs_shape_ncomp(c->dim, order), rcond);
+}
+
+static int mls_eval(const mfs_shape_ctx *c, int nn, const double *d, const double *v, int self,
+                    int order, double *out, double *work, double *rcond)
+{
+  (void)v;
+  (void)self;
+  kernel_values(c, nn, d, order, work);
+  return mls_core(c, 1 + c->dim, nn, d, work, NULL, order, out, mfs_shape_ncomp(c->dim, order),
+                  rcond);
+}
+
+static int kb_eval(const mfs_shape_ctx *c, int nn, const double *d, const double *v, int self,
+                   int order, double *out, double *work, double *rcond)
+{
+  (void)v;
+  (void)self;
+  int os = mfs_shape_ncomp(c->dim, order);
+  kernel_values(c, nn, d, order, work);
+  int st = mls_core(c, 1, nn, d, work, NULL, order, out, os, rcond);
+  if (st != MFS_OK)
+    return st;
+  double rc2;
+  st = correct_gradient(c, nn, d, order, out, os, &rc2);
+  *rcond = rc2 < *rcond ? rc2 : *rcond;
+  return st;
+}
+
+static int rl_eval(const mfs_shape_ctx *c, int nn, const double *d, const double *v, int self,
+                   int order, double *out, double *work, double *rcond)
+{
+  int dim = c->dim, os = mfs_shape_ncomp(dim, order), st = 1 + dim + dim * dim;
+  double *kw = work, *sh = work + (size_t)nn * st; /* sh: V-weighted Shepard, order <= 1 */
+  kernel_values(c, nn, d, order, kw);
+  int s1 = mls_core(c, 1, nn, d, kw, v, order >= 2 ? 1 : 0, sh, 1 + dim, rcond);
+  if (s1 != MFS_OK)
+    return s1;
+  double s[MAXD] = {0}, ds[MAXD * MAXD] = {0}; /* s = sum V_J grad W_J, ds[l][n] = d_n s_l */
+  for (int J = 0; J < nn; J++)
+    for (int l = 0; l < dim; l++) {
+      s[l] += v[J] * kw[J * st + 1 + l];
+      if (order >= 2)
+        for (int n = 0; n < dim; n++)
+          ds[l * dim + n] += v[J] * kw[J * st + 1 + dim + l * dim + n];
+    }
+  for (int J = 0; J < nn; J++) {
+    double *o = out + (size_t)J * os;
+    double psi = self >= 0 ? (J == self ? 1.0 : 0.0) : sh[J * (1 + dim)];
+    o[0] = sh[J * (1 + dim)];
+    for (int l = 0; l < dim; l++) {
+      o[1 + l] = v[J] * kw[J * st + 1 + l] - psi * s[l];
+      if (order >= 2)
+        for (int n = 0; n < dim; n++) {
+          double dpsi = self >= 0 ? 0.0 : sh[J * (1 + dim) + 1 + n];
+          o[1 + dim + l * dim + n] =
+            v[J] * kw[J * st + 1 + dim + l * dim + n] - dpsi * s[l] - psi * ds[l * dim + n];
+        }
+    }
+  }
+  double rc2;
+  int s2 = correct_gradient(c, nn, d, order, out, os, &rc2);
+  *rcond = rc2 < *rcond ? rc2 : *rcond;
+  return s2;
+}
+
+const mfs_shape_type mfs_shape_sph = {"sph", 1, sph_eval};
+const mfs_shape_type mfs_shape_shepard = {"shepard", 0, shepard_eval};
+const mfs_shape_type mfs_shape_mls = {"mls", 0, mls_eval};
+const mfs_shape_type mfs_shape_kb = {"kb", 0, kb_eval};
+const mfs_shape_type mfs_shape_rl = {"rl", 1, rl_eval};
+
+const mfs_shape_type *const mfs_shape_types[] = {&mfs_shape_sph, &mfs_shape_shepard,
+                                                  &mfs_shape_mls, &mfs_shape_kb, &mfs_shape_rl,
+                                                  NULL};
+
+const mfs_shape_type *mfs_shape_find(const char *name)
+{
+  for (int i = 0; mfs_shape_types[i]; i++)
+    if (strcmp(mfs_shape_types[i]->name, name) == 0)
+      return mfs_shape_types[i];
+  return NULL;
+}

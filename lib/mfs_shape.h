@@ -1,0 +1,62 @@
+/* Shape functions at one evaluation point X from its neighbours J (the nodes
+ * with |X_J - X| < a), with gradients and, on request, second derivatives.
+ *
+ *   sph      phi_J = V_J W_J                          (paper 003 eq. 41)
+ *   shepard  phi_J = W_J / sum W                      (paper 000 eq. 43)
+ *   mls      linear MLS, basis shifted to X, scaled by a   (003 eqs 36-39)
+ *   kb       values Shepard; gradient Krongauz-Belytschko corrected (000 eqs 26-32)
+ *   rl       values V-weighted Shepard; gradient Randles-Libersky normalized
+ *            symmetrized SPH gradient (000 eqs 33-34)
+ *
+ * The RL symmetrization subtracts the value at X.  At a particle (`self` >= 0,
+ * nodal quadrature) that is the particle's own value, exactly eq. 33; at any
+ * other point it is the Shepard interpolant, which keeps the corrected
+ * gradient exact for linear fields there too.
+ *
+ * Output layout, per neighbour J, ncomp = mfs_shape_ncomp(dim, order) doubles:
+ *   [phi, d_1 phi .. d_dim phi, (order 2) G_kn = d_n (d_k phi), k-major]
+ * Derivatives are with respect to the evaluation point X.  For kb and rl the
+ * "gradient" is the corrected one and G its derivative (not symmetric). */
+#ifndef MFS_SHAPE_H
+#define MFS_SHAPE_H
+
+#include <stddef.h>
+
+#include "mfs_kernel.h"
+
+typedef struct {
+  const mfs_kernel_type *kernel;
+  int dim;          /* 1..3 */
+  double a;         /* support radius */
+  double rcond_min; /* moment matrices with a smaller reciprocal condition number are singular */
+} mfs_shape_ctx;
+
+typedef struct {
+  const char *name;
+  int uses_volumes; /* reads v[] */
+  /* d: nn*dim offsets X_J - X; v: nn volumes (may be NULL if !uses_volumes);
+   * self: index in 0..nn-1 of the neighbour located at X, or -1;
+   * order: 1 or 2; out: nn*ncomp; work: mfs_shape_work_len(dim, nn) doubles;
+   * rcond: set to the reciprocal condition number of the moment matrix (1 if none).
+   * Returns MFS_OK or MFS_ESINGULAR. */
+  int (*eval)(const mfs_shape_ctx *c, int nn, const double *d, const double *v, int self,
+              int order, double *out, double *work, double *rcond);
+} mfs_shape_type;
+
+extern const mfs_shape_type mfs_shape_sph;
+extern const mfs_shape_type mfs_shape_shepard;
+extern const mfs_shape_type mfs_shape_mls;
+extern const mfs_shape_type mfs_shape_kb;
+extern const mfs_shape_type mfs_shape_rl;
+extern const mfs_shape_type *const mfs_shape_types[];
+
+const mfs_shape_type *mfs_shape_find(const char *name);
+
+static inline int mfs_shape_ncomp(int dim, int order)
+{
+  return 1 + dim + (order >= 2 ? dim * dim : 0);
+}
+
+size_t mfs_shape_work_len(int dim, int nn);
+
+#endif

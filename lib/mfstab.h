@@ -1,0 +1,15 @@
+/* libmfstab: stability and dispersion analysis of meshfree particle methods. */
+#ifndef MFSTAB_H
+#define MFSTAB_H
+
+#include "mfs_assemble.h"
+#include "mfs_csr.h"
+#include "mfs_kernel.h"
+#include "mfs_neighbor.h"
+#include "mfs_particles.h"
+#include "mfs_quad.h"
+#include "mfs_shape.h"
+#include "mfs_status.h"
+#include "mfs_voronoi.h"
+
+#endif
