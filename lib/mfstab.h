@@ -4,6 +4,7 @@
 
 #include "mfs_assemble.h"
 #include "mfs_csr.h"
+#include "mfs_dispersion.h"
 #include "mfs_kernel.h"
 #include "mfs_neighbor.h"
 #include "mfs_particles.h"

@@ -287,5 +287,5 @@ void cli_fmt(char *buf, size_t len, double v)
   if (v == 0.0)
     snprintf(buf, len, "0");
   else
-    snprintf(buf, len, "%.17g", v);
+    snprintf(buf, len, "%.16g", v);
 }

@@ -54,7 +54,7 @@ void cli_out_open(cli_out *o, const char *path);
 void cli_out_commit(cli_out *o);  /* close and rename; exits 1 on I/O failure */
 void cli_out_abort(cli_out *o);   /* close and remove the temporary file */
 
-/* Format a double with 17 significant digits, "0" for zero. */
+/* Format a double with 16 significant digits, "0" for zero. */
 void cli_fmt(char *buf, size_t len, double v);
 
 #endif

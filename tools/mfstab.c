@@ -10,7 +10,8 @@
 static const char usage[] =
   "usage: mfstab COMMAND [options]    (mfstab COMMAND --help for its options)\n"
   "commands:\n"
-  "  stencil      stiffness and mass stencil of an interior node of an infinite lattice\n";
+  "  stencil      stiffness and mass stencil of an interior node of an infinite lattice\n"
+  "  dispersion   von Neumann dispersion curves and stability classification\n";
 
 void opt_init(opt_iter *it, int argc, char **argv, const char *help, const char *const *flags)
 {
@@ -87,12 +88,12 @@ int main(int argc, char **argv)
   static const struct {
     const char *name;
     int (*run)(int, char **);
-  } cmds[] = {{"stencil", cmd_stencil}};
+  } cmds[] = {{"stencil", cmd_stencil}, {"dispersion", cmd_dispersion}};
   for (size_t i = 0; i < sizeof cmds / sizeof cmds[0]; i++)
     if (strcmp(argv[1], cmds[i].name) == 0) {
       cli_command = cmds[i].name;
       return cmds[i].run(argc - 1, argv + 1);
     }
-  fprintf(stderr, "mfstab: '%s': unknown command; allowed: stencil\n", argv[1]);
+  fprintf(stderr, "mfstab: '%s': unknown command; allowed: stencil, dispersion\n", argv[1]);
   return 2;
 }
