@@ -7,6 +7,7 @@
 #include "mfs_dispersion.h"
 #include "mfs_kernel.h"
 #include "mfs_neighbor.h"
+#include "mfs_paper.h"
 #include "mfs_particles.h"
 #include "mfs_quad.h"
 #include "mfs_shape.h"

@@ -1,7 +1,10 @@
 #!/usr/bin/env bash
-# Install what is missing, build, and run the main job.
+# Install what is missing, build, and run the main job: mfstab reproduce
+# (tables and figure data into notebooks-data/), then the plots from the CSV.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 bash scripts/install-deps.sh
 bash scripts/build.sh
-build/tools/mfstab stencil --dim 2 --kernel cubic --dilation 2 --shape mls --quadrature gauss2
+build/tools/mfstab reproduce --out notebooks-data
+/usr/bin/python3 analysis/plot_figures.py notebooks-data
+echo "plots: notebooks-data/*.png"

@@ -9,32 +9,6 @@
 #include "check.h"
 #include "mfstab.h"
 
-typedef struct {
-  int j, k;
-  double v[4]; /* nodal, gauss2, gauss1, stress-quad; 0 = blank */
-} row;
-
-/* Table I as printed; the -0.9193e-5 at (3,2) is in the 2x2 column (DESIGN.md). */
-static const row table[] = {
-  {0, 0, {0.5062, 0.6507, 0.8142, 0.6602}},
-  {1, 0, {0.1101, 0.1016, 0.9911e-1, 0.1046}},
-  {0, 1, {0.1101, 0.1016, 0.9911e-1, 0.1046}},
-  {1, 1, {0, -0.5933e-1, -0.1456, -0.7282e-1}},
-  {2, 0, {-0.1132, -0.8733e-1, -0.4677e-1, -0.7997e-1}},
-  {0, 2, {-0.1132, -0.8733e-1, -0.4677e-1, -0.7997e-1}},
-  {2, 1, {-0.5504e-1, -0.5223e-1, -0.4677e-1, -0.5090e-1}},
-  {1, 2, {-0.5504e-1, -0.5223e-1, -0.4677e-1, -0.5090e-1}},
-  {2, 2, {-0.1338e-1, -0.8851e-2, -0.4173e-2, -0.8778e-2}},
-  {3, 0, {0, -0.2663e-2, -0.5564e-2, -0.2782e-2}},
-  {0, 3, {0, -0.2663e-2, -0.5564e-2, -0.2782e-2}},
-  {3, 1, {0, -0.8141e-3, -0.3478e-2, -0.1739e-2}},
-  {1, 3, {0, -0.8141e-3, -0.3478e-2, -0.1739e-2}},
-  {3, 2, {0, -0.9193e-5, 0, 0}},
-  {2, 3, {0, -0.9193e-5, 0, 0}},
-};
-
-static const char *rules[4] = {"nodal", "gauss2", "gauss1", "stress-quad"};
-
 static double lookup(const mfs_stencil_entry *e, size_t n, int j, int k, int *found)
 {
   for (size_t i = 0; i < n; i++)
@@ -49,35 +23,35 @@ static double lookup(const mfs_stencil_entry *e, size_t n, int j, int k, int *fo
 int main(void)
 {
   for (int c = 0; c < 4; c++) {
+    const char *rule = mfs_paper_table1_rules[c];
     mfs_stencil_spec s = {.dim = 2,
                           .lattice = MFS_LATTICE_SQUARE,
                           .dx = 1.0,
                           .gamma = 1.0,
-                          .quadrature = rules[c],
+                          .quadrature = rule,
                           .plan = {&mfs_kernel_cubic, &mfs_shape_mls, 2.0, 1, 1e-12},
                           .mat = {MFS_PHYS_SCALAR, 1.0, 0.0, 1.0},
                           .consistent_mass = 0};
     mfs_stencil_entry *e;
     size_t n, bad;
     int st = mfs_stencil(&s, &e, &n, &bad);
-    CHECK(st == MFS_OK, "%s: mfs_stencil status %d", rules[c], st);
+    CHECK(st == MFS_OK, "%s: mfs_stencil status %d", rule, st);
     if (st != MFS_OK)
       continue;
     double k00 = 0.0;
-    for (size_t t = 0; t < sizeof table / sizeof table[0]; t++)
+    for (size_t t = 0; t < mfs_paper_table1_len; t++)
       for (int sj = -1; sj <= 1; sj += 2)
         for (int sk = -1; sk <= 1; sk += 2) {
-          int j = sj * table[t].j, k = sk * table[t].k, found;
-          double got = lookup(e, n, j, k, &found), want = table[t].v[c];
+          int j = sj * mfs_paper_table1[t].j, k = sk * mfs_paper_table1[t].k, found;
+          double got = lookup(e, n, j, k, &found), want = mfs_paper_table1[t].K[c];
           if (j == 0 && k == 0)
             k00 = got;
           if (want != 0.0) {
             /* printed to 4 significant digits: half a unit of the 4th digit */
-            double ulp4 = pow(10.0, floor(log10(fabs(want))) - 3);
-            CHECK(found, "%s (%d,%d): entry missing", rules[c], j, k);
-            CHECK_NEAR(got, want, 0.5 * ulp4 * (1 + 1e-9), "%s K(%d,%d)", rules[c], j, k);
+            CHECK(found, "%s (%d,%d): entry missing", rule, j, k);
+            CHECK_NEAR(got, want, mfs_paper_table1_tol(want), "%s K(%d,%d)", rule, j, k);
           } else {
-            CHECK(fabs(got) <= 1e-15 * 0.5, "%s K(%d,%d) = %.3g: blank entry not zero", rules[c],
+            CHECK(fabs(got) <= 1e-15 * 0.5, "%s K(%d,%d) = %.3g: blank entry not zero", rule,
                   j, k, got);
           }
         }
@@ -86,17 +60,17 @@ int main(void)
     for (size_t i = 0; i < n; i++) {
       sum += e[i].K;
       int listed = 0;
-      for (size_t t = 0; t < sizeof table / sizeof table[0]; t++)
-        listed |= abs(e[i].j) == table[t].j && abs(e[i].k) == table[t].k;
+      for (size_t t = 0; t < mfs_paper_table1_len; t++)
+        listed |= abs(e[i].j) == mfs_paper_table1[t].j && abs(e[i].k) == mfs_paper_table1[t].k;
       if (!listed)
-        CHECK(fabs(e[i].K) <= 1e-15, "%s K(%d,%d) = %.3g not in Table I", rules[c], e[i].j,
+        CHECK(fabs(e[i].K) <= 1e-15, "%s K(%d,%d) = %.3g not in Table I", rule, e[i].j,
               e[i].k, e[i].K);
       if (e[i].j == 0 && e[i].k == 0)
-        CHECK_NEAR(e[i].M, 1.0, 1e-14, "%s lumped mass = dx dy (eq. 119)", rules[c]);
+        CHECK_NEAR(e[i].M, 1.0, 1e-14, "%s lumped mass = dx dy (eq. 119)", rule);
       else
-        CHECK(e[i].M == 0.0, "%s lumped mass off the diagonal", rules[c]);
+        CHECK(e[i].M == 0.0, "%s lumped mass off the diagonal", rule);
     }
-    CHECK_NEAR(sum, 0.0, 1e-14 * k00, "%s row sum of K", rules[c]);
+    CHECK_NEAR(sum, 0.0, 1e-14 * k00, "%s row sum of K", rule);
     /* stress points on quadrilateral centres = half nodal + half one-point cells (section 4.4) */
     free(e);
   }

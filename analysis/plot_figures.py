@@ -1,0 +1,108 @@
+#!/usr/bin/python3
+"""Plots of the reproduced figures, made only from the CSV files that
+`mfstab reproduce` writes (default directory notebooks-data/).
+
+usage: /usr/bin/python3 analysis/plot_figures.py [DIR]
+Uses Debian's python3-matplotlib; writes DIR/figNN.png next to the CSV."""
+import csv
+import os
+import sys
+from collections import defaultdict
+
+import matplotlib
+
+matplotlib.use("Agg")
+import matplotlib.pyplot as plt  # noqa: E402
+
+
+def read(path):
+    with open(path, newline="") as f:
+        return list(csv.DictReader(f))
+
+
+def curves(rows, key):
+    """Group rows into curves keyed by key(row) -> (kappa list, omega2 list)."""
+    out = defaultdict(lambda: ([], []))
+    for r in rows:
+        k, w = out[key(r)]
+        k.append(float(r["kappa"]))
+        w.append(float(r["omega2"]))
+    return out
+
+
+def panel(ax, rows, key, title, label):
+    for name, (k, w) in sorted(curves(rows, key).items()):
+        ax.plot(k, w, label=label(name))
+    ax.axhline(0.0, color="k", lw=0.5)
+    ax.set_xlabel(r"$\kappa\Delta x/\pi$")
+    ax.set_ylabel(r"$(\omega\Delta x/c)^2$")
+    ax.set_title(title, fontsize=9)
+    ax.legend(fontsize=7)
+
+
+def by_dilation(d, path, out, title, key, label):
+    rows = read(os.path.join(d, path))
+    dils = sorted({r["dilation"] for r in rows}, key=float)
+    fig, axes = plt.subplots(1, len(dils), figsize=(5 * len(dils), 4), squeeze=False)
+    for ax, dil in zip(axes[0], dils):
+        panel(ax, [r for r in rows if r["dilation"] == dil], key, f"{title}, D = {dil}", label)
+    fig.tight_layout()
+    fig.savefig(os.path.join(d, out), dpi=110)
+    plt.close(fig)
+
+
+def main():
+    d = sys.argv[1] if len(sys.argv) > 1 else "notebooks-data"
+    sig = lambda r: float(r["sigma"])  # noqa: E731
+    by_dilation(d, "fig03.csv", "fig03.png", "Fig 3: Eulerian kernel, nodal, quartic MLS", sig,
+                lambda s: rf"$\bar\sigma$ = {s:g}")
+    by_dilation(d, "fig04.csv", "fig04.png", "Fig 4: Eulerian, nodal, sbar = -1", sig,
+                lambda s: rf"$\bar\sigma$ = {s:g}")
+    by_dilation(d, "fig09.csv", "fig09.png", "Fig 9: Eulerian kernel, stress points", sig,
+                lambda s: rf"$\bar\sigma$ = {s:g}")
+    # Fig 10: all dilations in one panel with the linear finite element
+    rows = read(os.path.join(d, "fig10.csv"))
+    fem = read(os.path.join(d, "fig10_fem.csv"))
+    fig, ax = plt.subplots(figsize=(5.5, 4))
+    panel(ax, rows, lambda r: float(r["dilation"]),
+          "Fig 10: Lagrangian kernel, stress points, cubic MLS", lambda s: f"D = {s:g}")
+    k = [float(r["kappa"]) for r in fem]
+    ax.plot(k, [float(r["omega2"]) for r in fem], "k--", label="linear FE (MLS D = 1, gauss2)")
+    ax.legend(fontsize=7)
+    fig.tight_layout()
+    fig.savefig(os.path.join(d, "fig10.png"), dpi=110)
+    plt.close(fig)
+    # Fig 11: least-squares stabilization, one panel per dilation
+    rows = []
+    for a in ("0", "0.001", "0.01", "0.1"):
+        for r in read(os.path.join(d, f"fig11_alpha{a}.csv")):
+            r["alpha"] = a
+            rows.append(r)
+    dils = sorted({r["dilation"] for r in rows}, key=float)
+    fig, axes = plt.subplots(1, len(dils), figsize=(10, 4))
+    for ax, dil in zip(axes, dils):
+        panel(ax, [r for r in rows if r["dilation"] == dil], lambda r: float(r["alpha"]),
+              f"Fig 11: least-squares stabilized nodal, D = {dil}", lambda a: rf"$\alpha_s$ = {a:g}")
+    fig.tight_layout()
+    fig.savefig(os.path.join(d, "fig11.png"), dpi=110)
+    plt.close(fig)
+    # 2D figures: one curve per angle and branch
+    for name, files, titles in (
+        ("fig13", ["fig13.csv"], ["nodal"]),
+        ("fig14", ["fig14a.csv", "fig14b.csv"], ["one-point cells", "2x2 cells"]),
+        ("fig15", ["fig15a.csv", "fig15b.csv", "fig15c.csv", "fig15d.csv"],
+         ["quadrilateral centres", "triangle centres", "star", "hexagonal"]),
+    ):
+        fig, axes = plt.subplots(1, len(files), figsize=(4.5 * len(files), 4), squeeze=False)
+        for ax, f, t in zip(axes[0], files, titles):
+            panel(ax, read(os.path.join(d, f)),
+                  lambda r: (float(r["theta"]), int(r["branch"])),
+                  f"{name}: anti-plane, cubic MLS D = 2, {t}",
+                  lambda tb: rf"$\theta$ = {tb[0]:g}" + (f", branch {tb[1]}" if tb[1] else ""))
+        fig.tight_layout()
+        fig.savefig(os.path.join(d, name + ".png"), dpi=110)
+        plt.close(fig)
+
+
+if __name__ == "__main__":
+    main()
