@@ -1,0 +1,305 @@
+/* Dispersion, path (a): Bloch symbols of the assembled unit-cell operators.
+ * Paper 003 Table II, the properties stated for Figs 3, 10, 13-15, the
+ * continuum limits, Hermitian symbols, Brillouin-zone geometry and the
+ * error returns.  Path (a) against the closed forms (path b) is in
+ * test_closed_vs_bloch below once both exist. */
+#include <complex.h>
+#undef I
+#include <stdlib.h>
+
+#include "check.h"
+#include "mfstab.h"
+
+static mfs_disp_plan *plan1d(const char *quad, const mfs_kernel_type *k, const mfs_shape_type *s,
+                             double D, mfs_frame fr, int consistent)
+{
+  mfs_disp_spec sp = {1, MFS_LATTICE_LINE, 1.0, quad, k, s, D, fr, MFS_PHYS_SCALAR,
+                      0.0, 1.0, consistent, 0.0};
+  int st;
+  mfs_disp_plan *p = mfs_disp_plan_alloc(&sp, &st);
+  CHECK(p != NULL, "plan %s %s D=%g: status %d", quad, k->name, D, st);
+  return p;
+}
+
+static mfs_disp_plan *plan2d(mfs_lattice_kind lat, const char *quad, mfs_physics_kind ph)
+{
+  mfs_disp_spec sp = {2, lat, 1.0, quad, &mfs_kernel_cubic, &mfs_shape_mls, 2.0,
+                      MFS_FRAME_LAGRANGIAN, ph, 0.3, 1.0, 0, 0.0};
+  int st;
+  mfs_disp_plan *p = mfs_disp_plan_alloc(&sp, &st);
+  CHECK(p != NULL, "plan 2D %s: status %d", quad, st);
+  return p;
+}
+
+static double w2(const mfs_disp_plan *p, double sbar, double kap, double th, int branch)
+{
+  double complex w[4];
+  int st = mfs_disp_omega2(p, sbar, kap, th, w);
+  CHECK(st == MFS_OK, "omega2 status %d", st);
+  return creal(w[branch]);
+}
+
+static void table2(void)
+{
+  /* Table II: sigma = 0, quartic MLS, D = 1.5, max over kappa of omega2 */
+  mfs_disp_plan *nod = plan1d("nodal", &mfs_kernel_quartic, &mfs_shape_mls, 1.5, MFS_FRAME_EULERIAN, 0);
+  mfs_disp_plan *les = plan1d("stress", &mfs_kernel_quartic, &mfs_shape_mls, 1.5, MFS_FRAME_LAGRANGIAN, 0);
+  mfs_disp_plan *ees = plan1d("stress", &mfs_kernel_quartic, &mfs_shape_mls, 1.5, MFS_FRAME_EULERIAN, 0);
+  double mx = -1, at = 0, mxs = -1, mxe = -1, diff = 0;
+  for (int i = 0; i <= 4000; i++) {
+    double k = i / 4000.0, a = w2(nod, 0, k, 0, 0), b = w2(les, 0, k, 0, 0), c = w2(ees, 0, k, 0, 0);
+    if (a > mx) {
+      mx = a;
+      at = k;
+    }
+    mxs = b > mxs ? b : mxs;
+    mxe = c > mxe ? c : mxe;
+    diff = fabs(b - c) > diff ? fabs(b - c) : diff;
+  }
+  CHECK_NEAR(mx, 1.0, 1e-12, "Table II nodal max omega2");
+  CHECK_NEAR(at, 0.5, 1e-12, "Table II nodal max at kappa = 1/2");
+  CHECK_NEAR(mxs, 2.0, 1e-12, "Table II Lagrangian stress points");
+  /* At sigma = 0 the Eulerian and Lagrangian stress-point operators are the
+   * same, so the printed 4.0 cannot hold (docs/errata.md). */
+  CHECK_NEAR(mxe, 2.0, 1e-12, "Table II Eulerian stress points (printed 4.0)");
+  CHECK(diff < 1e-13, "Eulerian = Lagrangian at sigma = 0: max diff %.3g", diff);
+  mfs_disp_plan_free(nod);
+  mfs_disp_plan_free(les);
+  mfs_disp_plan_free(ees);
+}
+
+static void fig3(void)
+{
+  mfs_disp_plan *e = plan1d("nodal", &mfs_kernel_quartic, &mfs_shape_mls, 1.5, MFS_FRAME_EULERIAN, 0);
+  mfs_disp_plan *l = plan1d("nodal", &mfs_kernel_quartic, &mfs_shape_mls, 1.5, MFS_FRAME_LAGRANGIAN, 0);
+  CHECK(fabs(w2(e, 0, 1.0, 0, 0)) < 1e-14, "sigma = 0: zero at the cut-off");
+  double prev = 2.0;
+  const double sb[4] = {0.05, 0.25, 0.5, 1.0};
+  for (int s = 0; s < 4; s++) {
+    double onset = -1;
+    for (int i = 1; i <= 2000 && onset < 0; i++)
+      if (w2(e, sb[s], i / 2000.0, 0, 0) < 0.0)
+        onset = i / 2000.0;
+    CHECK(onset > 0.3 && onset < prev, "tension sbar=%g: onset %g not below %g", sb[s], onset, prev);
+    for (int i = (int)(onset * 2000) + 1; i <= 2000; i++)
+      if (!(w2(e, sb[s], i / 2000.0, 0, 0) < 0.0)) {
+        CHECK(0, "sbar=%g unstable range not contiguous at kappa %g", sb[s], i / 2000.0);
+        break;
+      }
+    if (sb[s] == 0.25)
+      CHECK(onset > 0.55 && onset < 0.7, "sbar=0.25 onset %g not 'about 0.6'", onset);
+    prev = onset;
+  }
+  double mn = 1;
+  for (double s = -0.99; s <= 2.0; s += 0.0731)
+    for (int i = 0; i <= 400; i++) {
+      double v = w2(l, s, i / 400.0, 0, 0);
+      mn = v < mn ? v : mn;
+    }
+  CHECK(mn > -1e-14, "Lagrangian nodal: negative omega2 %.3g for sbar in (-1, 2]", mn);
+  mfs_disp_plan_free(e);
+  mfs_disp_plan_free(l);
+}
+
+static void fig10(void)
+{
+  double prev = INFINITY;
+  for (double D = 1.5; D <= 3.01; D += 0.25) {
+    mfs_disp_plan *p = plan1d("stress", &mfs_kernel_cubic, &mfs_shape_mls, D, MFS_FRAME_LAGRANGIAN, 0);
+    double c = w2(p, 0, 1.0, 0, 0);
+    CHECK(c > 0.0 && c < prev, "Fig 10: cut-off omega2 %g at D=%g (previous %g)", c, D, prev);
+    prev = c;
+    mfs_disp_plan_free(p);
+  }
+  mfs_disp_plan *fem = plan1d("gauss2", &mfs_kernel_cubic, &mfs_shape_mls, 1.0, MFS_FRAME_LAGRANGIAN, 0);
+  for (double k = 0.0; k <= 1.0; k += 0.0917) /* MLS with D = 1 is the linear element */
+    CHECK_NEAR(w2(fem, 0, k, 0, 0), 4 * pow(sin(M_PI * k / 2), 2), 1e-13, "linear FE at kappa %g", k);
+  mfs_disp_plan_free(fem);
+}
+
+/* Squared distance from k to the nearest reciprocal-lattice vector of the
+ * unit cell spanned by R1, R2. */
+static double dist2_recip(const double R[2][2], const double *k)
+{
+  double det = R[0][0] * R[1][1] - R[0][1] * R[1][0];
+  double b1[2] = {2 * M_PI * R[1][1] / det, -2 * M_PI * R[1][0] / det};
+  double b2[2] = {-2 * M_PI * R[0][1] / det, 2 * M_PI * R[0][0] / det};
+  double best = INFINITY;
+  for (int i = -3; i <= 3; i++)
+    for (int j = -3; j <= 3; j++) {
+      double dx = k[0] - i * b1[0] - j * b2[0], dy = k[1] - i * b1[1] - j * b2[1];
+      best = fmin(best, dx * dx + dy * dy);
+    }
+  return best;
+}
+
+static void zeros2d(void)
+{
+  const double r45 = M_PI / 4;
+  const double h = sqrt(3.0) / 2;
+  const double Rsq[2][2] = {{1, 0}, {0, 1}}, Rst[2][2] = {{1, 1}, {1, -1}}, Rhx[2][2] = {{1, 0}, {0.5, h}};
+  struct {
+    mfs_lattice_kind lat;
+    const char *q;
+    int zero0, zero45;
+  } c[] = {{MFS_LATTICE_SQUARE, "nodal", 1, 1},       {MFS_LATTICE_SQUARE, "gauss1", 0, 1},
+           {MFS_LATTICE_SQUARE, "stress-quad", 0, 1}, {MFS_LATTICE_SQUARE, "gauss2", 0, 0},
+           {MFS_LATTICE_SQUARE, "stress-tri", 0, 0},  {MFS_LATTICE_SQUARE, "stress-star", 0, 0},
+           {MFS_LATTICE_HEX, "stress-hex", 0, 0}};
+  for (size_t i = 0; i < sizeof c / sizeof c[0]; i++) {
+    mfs_disp_plan *p = plan2d(c[i].lat, c[i].q, MFS_PHYS_SCALAR);
+    if (!p)
+      continue;
+    int nb = mfs_disp_branches(p);
+    const double(*R)[2] = c[i].lat == MFS_LATTICE_HEX ? Rhx : nb == 2 ? Rst : Rsq;
+    double scale = 0.0, mn = INFINITY;
+    /* the smallest omega2 over the sampled zone, away from k = 0 and from
+     * reciprocal-lattice vectors of the unit cell */
+    for (int t = 0; t <= 12; t++) {
+      double th = t * M_PI / 12;
+      double km = mfs_disp_kappa_max(p, th);
+      for (int j = 1; j <= 200; j++) {
+        double kap = km * j / 200, kv[2] = {kap * M_PI * cos(th), kap * M_PI * sin(th)};
+        double complex w[4];
+        mfs_disp_omega2(p, 0, kap, th, w);
+        for (int b = 0; b < nb; b++) {
+          scale = fabs(creal(w[b])) > scale ? fabs(creal(w[b])) : scale;
+          /* omega2 / |k - G|^2: a spurious zero shows, the acoustic branch
+           * vanishing like |k - G|^2 at reciprocal vectors G does not */
+          double r = b > 0 ? creal(w[b]) : creal(w[b]) / dist2_recip(R, kv);
+          mn = r < mn ? r : mn;
+        }
+      }
+    }
+    double z0 = w2(p, 0, mfs_disp_kappa_max(p, 0), 0, 0);
+    double z45 = w2(p, 0, mfs_disp_kappa_max(p, r45), r45, nb - 1 > 0 ? 0 : 0);
+    if (c[i].lat == MFS_LATTICE_SQUARE) {
+      CHECK(c[i].zero0 ? fabs(z0) < 1e-14 : z0 > 1e-3, "%s: omega2 %.3g at the cut-off, theta 0", c[i].q, z0);
+      if (nb == 1)
+        CHECK(c[i].zero45 ? fabs(z45) < 1e-14 : z45 > 1e-3, "%s: omega2 %.3g at the cut-off, 45 deg", c[i].q, z45);
+    }
+    if (!c[i].zero0 && !c[i].zero45)
+      /* stress-tri: omega2 = 0.0142 at (pi, pi), small but clearly not a zero */
+      CHECK(mn > 1e-4 * scale, "%s: spurious near-zero omega2/k^2 %.3g (scale %.3g)", c[i].q, mn, scale);
+    mfs_disp_plan_free(p);
+  }
+}
+
+static void continuum(void)
+{
+  const char *q[4] = {"nodal", "stress", "gauss1", "gauss2"};
+  /* Shepard functions are not linearly complete: their Galerkin operators miss
+   * the continuum limit except at the symmetric points (nodes, midpoints) of a
+   * uniform lattice, so they are left out here */
+  const mfs_shape_type *sh[4] = {&mfs_shape_mls, &mfs_shape_kb, &mfs_shape_rl, &mfs_shape_mls};
+  const double k = 1e-3, kk = k * M_PI;
+  for (int qi = 0; qi < 4; qi++)
+    for (int s = 0; s < 3; s++)
+      for (double D = 1.5; D <= 2.6; D += 0.5) {
+        mfs_disp_plan *l = plan1d(q[qi], &mfs_kernel_cubic, sh[s], D, MFS_FRAME_LAGRANGIAN, 0);
+        mfs_disp_plan *e = plan1d(q[qi], &mfs_kernel_cubic, sh[s], D, MFS_FRAME_EULERIAN, 0);
+        if (!l || !e)
+          continue;
+        const double sb[3] = {-0.37, 0.0, 1.21};
+        for (int i = 0; i < 3; i++)
+          CHECK_NEAR(w2(l, sb[i], k, 0, 0) / (kk * kk), 1.0 + sb[i], 2e-4,
+                     "Lagrangian %s %s D=%g sbar=%g: continuum limit", q[qi], sh[s]->name, D, sb[i]);
+        /* Eulerian at sigma = 0 equals the continuum too; under stress the
+         * paper's linearization (eq. 71) has another limit (docs/errata.md) */
+        CHECK_NEAR(w2(e, 0.0, k, 0, 0) / (kk * kk), 1.0, 2e-4, "Eulerian %s %s D=%g sigma=0", q[qi],
+                   sh[s]->name, D);
+        mfs_disp_plan_free(l);
+        mfs_disp_plan_free(e);
+      }
+  /* 2D: anti-plane (1 + sbar) and plane strain S and P branches, every rule */
+  const char *q2[6] = {"nodal", "gauss1", "gauss2", "stress-quad", "stress-tri", "stress-star"};
+  double nu = 0.3, p2 = 2 * (1 - nu) / (1 - 2 * nu);
+  for (int i = 0; i < 7; i++) {
+    mfs_lattice_kind lat = i < 6 ? MFS_LATTICE_SQUARE : MFS_LATTICE_HEX;
+    const char *qq = i < 6 ? q2[i] : "stress-hex";
+    mfs_disp_plan *a = plan2d(lat, qq, MFS_PHYS_SCALAR);
+    mfs_disp_plan *ps = plan2d(lat, qq, MFS_PHYS_PLANE_STRAIN);
+    if (!a || !ps)
+      continue;
+    for (double th = 0.0; th < M_PI; th += 0.4137) {
+      CHECK_NEAR(w2(a, 0.42, k, th, 0) / (kk * kk), 1.42, 3e-4, "anti-plane %s theta %g", qq, th);
+      double complex w[4];
+      mfs_disp_omega2(ps, 0.0, k, th, w);
+      int nb = mfs_disp_branches(ps);
+      CHECK_NEAR(creal(w[0]) / (kk * kk), 1.0, 3e-4, "plane strain S branch %s theta %g", qq, th);
+      CHECK_NEAR(creal(w[1]) / (kk * kk), p2, 3e-4 * p2, "plane strain P branch %s theta %g", qq, th);
+      (void)nb;
+    }
+    mfs_disp_plan_free(a);
+    mfs_disp_plan_free(ps);
+  }
+}
+
+static void symbols(void)
+{
+  /* Lagrangian symbols are Hermitian; on the symmetric 1D lattice the
+   * Eulerian symbol is real */
+  mfs_disp_plan *p = plan2d(MFS_LATTICE_SQUARE, "stress-star", MFS_PHYS_PLANE_STRAIN);
+  double complex K[16], M[16];
+  double k[2] = {0.731, -1.917}, herm = 0.0;
+  mfs_disp_symbols(p, 0.0, k, K, M);
+  for (int i = 0; i < 4; i++)
+    for (int j = 0; j < 4; j++)
+      herm = fmax(herm, cabs(K[i * 4 + j] - conj(K[j * 4 + i])));
+  CHECK(herm < 1e-14, "star plane strain K(k) not Hermitian: %.3g", herm);
+  mfs_disp_plan_free(p);
+  mfs_disp_plan *e = plan1d("stress", &mfs_kernel_quartic, &mfs_shape_mls, 2.385, MFS_FRAME_EULERIAN, 1);
+  double k1[2] = {2.1, 0};
+  mfs_disp_symbols(e, 0.77, k1, K, M);
+  CHECK(fabs(cimag(K[0])) < 1e-14 && fabs(cimag(M[0])) < 1e-14, "Eulerian 1D symbol imaginary part %.3g",
+        cimag(K[0]));
+  mfs_disp_plan_free(e);
+}
+
+static void geometry(void)
+{
+  mfs_disp_plan *sq = plan2d(MFS_LATTICE_SQUARE, "nodal", MFS_PHYS_SCALAR);
+  mfs_disp_plan *hx = plan2d(MFS_LATTICE_HEX, "stress-hex", MFS_PHYS_SCALAR);
+  mfs_disp_plan *st = plan2d(MFS_LATTICE_SQUARE, "stress-star", MFS_PHYS_SCALAR);
+  CHECK_NEAR(mfs_disp_kappa_max(sq, 0), 1.0, 1e-14, "square kappa max at 0");
+  CHECK_NEAR(mfs_disp_kappa_max(sq, M_PI / 4), sqrt(2.0), 1e-14, "square kappa max at 45");
+  CHECK_NEAR(mfs_disp_kappa_max(hx, 0), 4.0 / 3.0, 1e-14, "hex kappa max at 0 (K point)");
+  CHECK_NEAR(mfs_disp_kappa_max(hx, M_PI / 6), 2.0 / sqrt(3.0), 1e-14, "hex kappa max at 30 (M point)");
+  double kpp[2] = {M_PI, M_PI}, kp0[2] = {M_PI, 0};
+  CHECK(mfs_disp_is_reciprocal(st, kpp, 1e-12), "(pi, pi) is reciprocal for the star cell");
+  CHECK(!mfs_disp_is_reciprocal(sq, kpp, 1e-12), "(pi, pi) is not reciprocal for the square cell");
+  CHECK(!mfs_disp_is_reciprocal(st, kp0, 1e-12), "(pi, 0) is not reciprocal for the star cell");
+  CHECK(mfs_disp_branches(st) == 2 && mfs_disp_branches(sq) == 1, "branch counts");
+  mfs_disp_plan_free(sq);
+  mfs_disp_plan_free(hx);
+  mfs_disp_plan_free(st);
+}
+
+static void errors(void)
+{
+  int st;
+  mfs_disp_spec s = {2, MFS_LATTICE_SQUARE, 1.0, "nodal", &mfs_kernel_cubic, &mfs_shape_mls, 0.9,
+                     MFS_FRAME_LAGRANGIAN, MFS_PHYS_SCALAR, 0.3, 1.0, 0, 0.0};
+  CHECK(mfs_disp_plan_alloc(&s, &st) == NULL && st == MFS_ESINGULAR, "D = 0.9: status %d", st);
+  s.dilation = 2.0;
+  s.quadrature = "stress-hex";
+  CHECK(mfs_disp_plan_alloc(&s, &st) == NULL && st == MFS_EINVAL, "stress-hex on square: %d", st);
+  s.dim = 1;
+  s.lattice = MFS_LATTICE_LINE;
+  s.quadrature = "nodal";
+  s.physics = MFS_PHYS_PLANE_STRAIN;
+  CHECK(mfs_disp_plan_alloc(&s, &st) == NULL && st == MFS_ENOTSUP, "plane strain in 1D: %d", st);
+}
+
+int main(void)
+{
+  table2();
+  fig3();
+  fig10();
+  zeros2d();
+  continuum();
+  symbols();
+  geometry();
+  errors();
+  return check_summary("test_dispersion");
+}
