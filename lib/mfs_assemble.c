@@ -100,42 +100,92 @@ int mfs_physics_ndof(mfs_physics_kind kind)
 
 typedef enum { PAIR_GRAD, PAIR_PLANE, PAIR_MASS } pair_kind;
 
+/* Add w b(I, J) over the list e0 .. e1 of one quadrature point to the row
+ * accumulator acc (nd2 per column; mark[J] is J's column, already set).
+ * fi: particle I's table entry.  The arithmetic is that of one term
+ * a += w c0 g, etc., so that results do not depend on how loops are split. */
+static void add_point(const mfs_plan *pl, pair_kind kind, int ndof, const double *coef,
+                      double w, const double *fi, size_t e0, size_t e1, const int *mark,
+                      double *acc)
+{
+  const int *idx = pl->nl->idx;
+  const double *tab = pl->tab;
+  int nc = pl->ncomp, dim = pl->dim, nd2 = ndof * ndof;
+  double c0 = coef[0], c1 = coef[1], c2 = coef[2];
+  switch (kind) {
+  case PAIR_GRAD: {
+    double wc = w * c0; /* w * c0 * g evaluates as (w * c0) * g */
+    if (dim == 2) {
+      double i1 = fi[1], i2 = fi[2];
+      for (size_t e = e0; e < e1; e++) {
+        const double *fj = tab + e * nc;
+        double g = 0.0;
+        g += i1 * fj[1];
+        g += i2 * fj[2];
+        acc[mark[idx[e]]] += wc * g;
+      }
+    } else {
+      for (size_t e = e0; e < e1; e++) {
+        const double *fj = tab + e * nc;
+        double g = 0.0;
+        for (int k = 0; k < dim; k++)
+          g += fi[1 + k] * fj[1 + k];
+        acc[mark[idx[e]]] += wc * g;
+      }
+    }
+    break;
+  }
+  case PAIR_PLANE: /* B_I^T D B_J, c0 = lambda + 2 mu, c1 = lambda, c2 = mu */
+    for (size_t e = e0; e < e1; e++) {
+      const double *fj = tab + e * nc;
+      double *a = acc + (size_t)mark[idx[e]] * nd2;
+      double ix = fi[1], iy = fi[2], jx = fj[1], jy = fj[2];
+      a[0] += w * (c0 * ix * jx + c2 * iy * jy);
+      a[1] += w * (c1 * ix * jy + c2 * iy * jx);
+      a[2] += w * (c1 * iy * jx + c2 * ix * jy);
+      a[3] += w * (c0 * iy * jy + c2 * ix * jx);
+    }
+    break;
+  case PAIR_MASS: {
+    double wf = w * c0 * fi[0]; /* w * c0 * fi0 * fj0 evaluates left to right */
+    for (size_t e = e0; e < e1; e++) {
+      double m = wf * tab[e * nc];
+      double *a = acc + (size_t)mark[idx[e]] * nd2;
+      for (int k = 0; k < ndof; k++)
+        a[k * ndof + k] += m;
+    }
+    break;
+  }
+  }
+}
+
 /* Row-wise assembly of sum_Q w_Q b(I, J, Q) with a marker array (as in
  * CSparse's cs_multiply): for each particle I, the quadrature points that
- * see it, and for each of those, the particles J they see. */
+ * see it (the transposed lists), and for each of those, the particles J
+ * they see.  Columns of a row are in order of first appearance. */
 static int assemble_pairs(const mfs_plan *pl, pair_kind kind, int ndof, const double *coef,
                           mfs_csr **out)
 {
   const mfs_nlist *nl = pl->nl;
   size_t n = pl->p->n, nq = nl->nq, nnz = nl->ptr[nq];
-  int nc = pl->ncomp, dim = pl->dim, nd2 = ndof * ndof;
+  int nd2 = ndof * ndof;
   int st = MFS_ENOMEM;
-  size_t *tptr = calloc(n + 1, sizeof *tptr), *te = malloc((nnz ? nnz : 1) * sizeof *te);
+  size_t *tptr = calloc(n + 1, sizeof *tptr), *next = malloc((n ? n : 1) * sizeof *next);
   int *tq = malloc((nnz ? nnz : 1) * sizeof *tq), *mark = malloc((n ? n : 1) * sizeof *mark);
   int *cols = NULL;
   double *acc = NULL;
   mfs_csr *A = NULL;
-  if (!tptr || !te || !tq || !mark)
+  if (!tptr || !next || !tq || !mark)
     goto done;
   for (size_t e = 0; e < nnz; e++)
     tptr[nl->idx[e] + 1]++;
-  size_t maxrow = 0;
-  for (size_t i = 0; i < n; i++) {
+  for (size_t i = 0; i < n; i++)
     tptr[i + 1] += tptr[i];
-  }
-  {
-    size_t *next = malloc((n ? n : 1) * sizeof *next);
-    if (!next)
-      goto done;
-    memcpy(next, tptr, n * sizeof *next);
-    for (size_t Q = 0; Q < nq; Q++)
-      for (size_t e = nl->ptr[Q]; e < nl->ptr[Q + 1]; e++) {
-        size_t s = next[nl->idx[e]]++;
-        tq[s] = (int)Q;
-        te[s] = e;
-      }
-    free(next);
-  }
+  memcpy(next, tptr, n * sizeof *next);
+  for (size_t Q = 0; Q < nq; Q++)
+    for (size_t e = nl->ptr[Q]; e < nl->ptr[Q + 1]; e++)
+      tq[next[nl->idx[e]]++] = (int)Q;
+  size_t maxrow = 0;
   for (size_t i = 0; i < n; i++) { /* bound on the row length: sum of list lengths */
     size_t s = 0;
     for (size_t t = tptr[i]; t < tptr[i + 1]; t++)
@@ -151,48 +201,22 @@ static int assemble_pairs(const mfs_plan *pl, pair_kind kind, int ndof, const do
   if (!cols || !acc || !A)
     goto done;
   size_t pos = 0;
-  double c0 = coef[0], c1 = coef[1], c2 = coef[2];
   for (size_t I = 0; I < n; I++) {
     int len = 0;
     for (size_t t = tptr[I]; t < tptr[I + 1]; t++) {
-      size_t Q = (size_t)tq[t];
-      const double *fi = pl->tab + te[t] * nc;
-      double w = pl->q->w[Q];
-      for (size_t e = nl->ptr[Q]; e < nl->ptr[Q + 1]; e++) {
+      size_t Q = (size_t)tq[t], e0 = nl->ptr[Q], e1 = nl->ptr[Q + 1], ei = e0;
+      for (size_t e = e0; e < e1; e++) { /* columns met for the first time, and I's entry */
         int J = nl->idx[e];
-        const double *fj = pl->tab + e * nc;
-        int s = mark[J];
-        if (s < 0) {
-          s = mark[J] = len++;
-          cols[s] = J;
+        ei = J == (int)I ? e : ei;
+        if (mark[J] < 0) {
+          mark[J] = len;
+          cols[len] = J;
           for (int k = 0; k < nd2; k++)
-            acc[s * nd2 + k] = 0.0;
-        }
-        double *a = acc + s * nd2;
-        switch (kind) {
-        case PAIR_GRAD: {
-          double g = 0.0;
-          for (int k = 0; k < dim; k++)
-            g += fi[1 + k] * fj[1 + k];
-          a[0] += w * c0 * g;
-          break;
-        }
-        case PAIR_PLANE: { /* B_I^T D B_J, c0 = lambda + 2 mu, c1 = lambda, c2 = mu */
-          double ix = fi[1], iy = fi[2], jx = fj[1], jy = fj[2];
-          a[0] += w * (c0 * ix * jx + c2 * iy * jy);
-          a[1] += w * (c1 * ix * jy + c2 * iy * jx);
-          a[2] += w * (c1 * iy * jx + c2 * ix * jy);
-          a[3] += w * (c0 * iy * jy + c2 * ix * jx);
-          break;
-        }
-        case PAIR_MASS: {
-          double m = w * c0 * fi[0] * fj[0];
-          for (int k = 0; k < ndof; k++)
-            a[k * ndof + k] += m;
-          break;
-        }
+            acc[(size_t)len * nd2 + k] = 0.0;
+          len++;
         }
       }
+      add_point(pl, kind, ndof, coef, pl->q->w[Q], pl->tab + ei * pl->ncomp, e0, e1, mark, acc);
     }
     if (pos + (size_t)len * nd2 > cap) {
       size_t ncap = 2 * cap + (size_t)len * nd2;
@@ -221,7 +245,7 @@ static int assemble_pairs(const mfs_plan *pl, pair_kind kind, int ndof, const do
   st = MFS_OK;
 done:
   free(tptr);
-  free(te);
+  free(next);
   free(tq);
   free(mark);
   free(cols);
@@ -259,11 +283,16 @@ int mfs_assemble_mass_lumped(const mfs_plan *pl, const mfs_material *mat, double
   int ndof = mfs_physics_ndof(mat->kind), nc = pl->ncomp;
   for (size_t i = 0; i < pl->p->n * ndof; i++)
     m[i] = 0.0;
+  if (!pl->shape->partition_of_unity) { /* particle masses rho V_I (eq. 51) */
+    for (size_t I = 0; I < pl->p->n; I++)
+      for (int k = 0; k < ndof; k++)
+        m[I * ndof + k] = mat->density * pl->p->vol[I];
+    return MFS_OK;
+  }
+  /* rho times the integral of phi_I: the row sum of the consistent mass
+   * (eq. 131) for a partition of unity */
   for (size_t Q = 0; Q < nl->nq; Q++) {
-    double s = 0.0; /* row sum of consistent mass: w phi_I sum_J phi_J */
-    for (size_t e = nl->ptr[Q]; e < nl->ptr[Q + 1]; e++)
-      s += pl->tab[e * nc];
-    double f = mat->density * pl->q->w[Q] * s;
+    double f = mat->density * pl->q->w[Q];
     for (size_t e = nl->ptr[Q]; e < nl->ptr[Q + 1]; e++)
       for (int k = 0; k < ndof; k++)
         m[(size_t)nl->idx[e] * ndof + k] += f * pl->tab[e * nc];

@@ -10,8 +10,10 @@
  *   scalar        K_IJ = C sum_Q w_Q grad phi_I . grad phi_J      1D bar (C = E),
  *                 2D anti-plane (C = shear modulus, paper 003 eq. 113)
  *   plane strain  K_IJ = sum_Q w_Q B_I^T D B_J, D from lambda and mu, dofs (2I, 2I+1)
- * Mass: consistent M_IJ = rho sum_Q w_Q phi_I phi_J (eq. 112), lumped: its
- * row sums (eq. 131). */
+ * Mass: consistent M_IJ = rho sum_Q w_Q phi_I phi_J (eq. 112); lumped
+ * m_I = rho sum_Q w_Q phi_I(Q), the row sum of the consistent mass (eq. 131)
+ * for partition-of-unity shapes, and the particle mass rho V_I (eq. 51) for
+ * sph, which is not a partition of unity. */
 #ifndef MFS_ASSEMBLE_H
 #define MFS_ASSEMBLE_H
 

@@ -85,6 +85,8 @@ static int add_terms(mfs_disp_plan *dp, const mfs_plan *pl, size_t I, int cls, r
       }
     }
   }
+  if (!dp->spec.shape->partition_of_unity) /* sph: particle mass rho V (eq. 51) */
+    msum[0] = msum[1] = p->vol[I];
   if (!dp->spec.consistent_mass) /* lumped: row sums on the diagonal */
     for (int r = 0; r < nd; r++) {
       if (dp->nterm == *cap) {

@@ -1,5 +1,6 @@
 #include "mfs_neighbor.h"
 
+#include <limits.h>
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
@@ -66,16 +67,18 @@ mfs_grid *mfs_grid_alloc(int dim, size_t n, const double *x, const mfs_box *box,
       st = MFS_ETOOSMALL;
       goto fail;
     }
-    /* keep the number of cells bounded by the number of points */
-    int nc = L > 0.0 ? (int)floor(L / radius) : 1;
-    if (nc < 1)
-      nc = 1;
-    if ((size_t)nc > 4 * n + 4)
-      nc = (int)(4 * n + 4);
+    /* cells of side h >= hmin, a little over radius/2: a query scans 5 x 5
+     * cells holding about (5/2)^2 r^2 of points (3 x 3 cells of side radius
+     * hold 9 r^2), and the margin keeps a point within radius at most 2
+     * cells away after rounding of the cell coordinates.  The number of
+     * cells stays bounded by the number of points. */
+    double hmin = 0.5 * radius * (1.0 + 1e-6);
+    double ncd = L > 0.0 ? floor(L / hmin) : 1.0, ncmax = fmin(4.0 * (double)n + 4.0, INT_MAX);
+    int nc = ncd < 1.0 ? 1 : (int)(ncd < ncmax ? ncd : ncmax); /* no int overflow */
     g->nc[k] = nc;
     g->h[k] = L > 0.0 ? L / nc : 1.0;
-    if (!box->periodic && g->h[k] < radius)
-      g->h[k] = radius; /* clamping keeps far points in edge cells */
+    if (!box->periodic && g->h[k] < hmin)
+      g->h[k] = hmin; /* clamping keeps far points in edge cells */
     ncells *= (size_t)nc;
   }
   g->start = calloc(ncells + 1, sizeof *g->start);
@@ -128,31 +131,78 @@ static void sort_ints(int *a, size_t n)
   }
 }
 
-/* Distinct cell coordinates along k that may hold points within r of x. */
-static int cell_range(const mfs_grid *g, int k, double x, int *out)
+/* Distinct cell coordinates along k that may hold points within r of x:
+ * span = ceil(radius / h[k]) cells either side (2: cells of side > radius/2). */
+static int cell_range(const mfs_grid *g, int k, int span, double x, int *out)
 {
-  int c = (int)floor((x - g->box.lo[k]) / g->h[k]);
-  int span = (int)ceil(g->radius / g->h[k]); /* 1 when h >= radius */
+  int c = (int)floor((x - g->box.lo[k]) / g->h[k]), nc = g->nc[k];
   int m = 0;
-  if (g->box.periodic && 2 * span + 1 >= g->nc[k]) {
-    for (int i = 0; i < g->nc[k]; i++)
+  if (!g->box.periodic) {
+    int c0 = c - span < 0 ? 0 : c - span, c1 = c + span >= nc ? nc - 1 : c + span;
+    for (int ci = c0; ci <= c1; ci++)
+      out[m++] = ci;
+    return m;
+  }
+  if (2 * span + 1 >= nc) {
+    for (int i = 0; i < nc; i++)
       out[m++] = i;
     return m;
   }
   for (int d = -span; d <= span; d++) {
-    int ci = c + d;
-    if (g->box.periodic) {
-      ci %= g->nc[k];
-      if (ci < 0)
-        ci += g->nc[k];
-    } else if (ci < 0 || ci >= g->nc[k]) {
-      continue;
-    }
-    out[m++] = ci;
+    int ci = (c + d) % nc;
+    out[m++] = ci < 0 ? ci + nc : ci;
   }
   return m;
 }
 
+/* Squared distance from y to xi, with the arithmetic of mfs_box_delta
+ * (minimum image when periodic), so that the lists do not depend on which
+ * of the two computed it. */
+static inline double dist2(int dim, int periodic, const double *L, const double *y,
+                           const double *xi)
+{
+  double d2 = 0.0;
+  for (int k = 0; k < dim; k++) {
+    double t = xi[k] - y[k];
+    if (periodic)
+      t -= L[k] * nearbyint(t / L[k]);
+    d2 += t * t;
+  }
+  return d2;
+}
+
+/* Append every candidate item[s0 .. s1) at out[nnz ..], keeping (advancing
+ * past) those within r2 of y: no branch to mispredict.  out has room for
+ * s1 - s0 more.  Returns the new count.  dim and periodic are arguments so
+ * that the calls below, with constants, are specialized. */
+static inline size_t scan(int dim, int periodic, const double *L, const double *x,
+                          const int *item, const double *y, double r2, size_t s0, size_t s1,
+                          int *out, size_t nnz)
+{
+  for (size_t s = s0; s < s1; s++) {
+    int i = item[s];
+    out[nnz] = i;
+    nnz += dist2(dim, periodic, L, y, x + (size_t)i * dim) < r2;
+  }
+  return nnz;
+}
+
+/* Room for `more` further entries in nl->idx. */
+static int reserve(mfs_nlist *nl, size_t nnz, size_t more, size_t *cap)
+{
+  if (nnz + more <= *cap)
+    return MFS_OK;
+  size_t ncap = 2 * *cap > nnz + more ? 2 * *cap : nnz + more;
+  int *t = realloc(nl->idx, ncap * sizeof *t);
+  if (!t)
+    return MFS_ENOMEM;
+  nl->idx = t;
+  *cap = ncap;
+  return MFS_OK;
+}
+
+/* The cells along direction 0 are scanned in runs of consecutive cells,
+ * whose items are contiguous in g->item. */
 mfs_nlist *mfs_nlist_build(const mfs_grid *g, size_t nq, const double *xq, double r, int *status)
 {
   int st = MFS_EINVAL;
@@ -169,40 +219,43 @@ mfs_nlist *mfs_nlist_build(const mfs_grid *g, size_t nq, const double *xq, doubl
   nl->idx = malloc(cap * sizeof *nl->idx);
   if (!nl->ptr || !nl->idx)
     goto fail;
-  int dim = g->dim;
-  double r2 = r * r;
-  int rng[3][64];
+  int dim = g->dim, per = g->box.periodic;
+  double r2 = r * r, L[3];
+  for (int k = 0; k < 3; k++)
+    L[k] = g->box.hi[k] - g->box.lo[k];
+  int rng[3][64], run0[64], run1[64], span[3];
   int nr[3] = {1, 1, 1};
+  for (int k = 0; k < dim; k++)
+    span[k] = (int)ceil(g->radius / g->h[k]);
   rng[1][0] = rng[2][0] = 0;
   nl->ptr[0] = 0;
   for (size_t q = 0; q < nq; q++) {
     const double *y = xq + q * dim;
     for (int k = 0; k < dim; k++)
-      nr[k] = cell_range(g, k, y[k], rng[k]);
+      nr[k] = cell_range(g, k, span[k], y[k], rng[k]);
+    int nrun = 0;
+    for (int c0 = 0; c0 < nr[0]; c0++) {
+      if (nrun > 0 && rng[0][c0] == run1[nrun - 1] + 1) {
+        run1[nrun - 1]++;
+      } else {
+        run0[nrun] = run1[nrun] = rng[0][c0];
+        nrun++;
+      }
+    }
     size_t row0 = nnz;
     for (int c2 = 0; c2 < nr[2]; c2++)
-      for (int c1 = 0; c1 < nr[1]; c1++)
-        for (int c0 = 0; c0 < nr[0]; c0++) {
-          size_t c = ((size_t)rng[2][c2] * g->nc[1] + rng[1][c1]) * g->nc[0] + rng[0][c0];
-          for (size_t s = g->start[c]; s < g->start[c + 1]; s++) {
-            int i = g->item[s];
-            double d[3], d2 = 0.0;
-            mfs_box_delta(&g->box, y, g->x + (size_t)i * dim, d);
-            for (int k = 0; k < dim; k++)
-              d2 += d[k] * d[k];
-            if (d2 >= r2)
-              continue;
-            if (nnz == cap) {
-              size_t ncap = 2 * cap;
-              int *t = realloc(nl->idx, ncap * sizeof *t);
-              if (!t)
-                goto fail;
-              nl->idx = t;
-              cap = ncap;
-            }
-            nl->idx[nnz++] = i;
-          }
+      for (int c1 = 0; c1 < nr[1]; c1++) {
+        size_t base = ((size_t)rng[2][c2] * g->nc[1] + rng[1][c1]) * g->nc[0];
+        for (int u = 0; u < nrun; u++) {
+          size_t s0 = g->start[base + run0[u]], s1 = g->start[base + run1[u] + 1];
+          if (reserve(nl, nnz, s1 - s0, &cap) != MFS_OK)
+            goto fail;
+          if (dim == 2 && !per)
+            nnz = scan(2, 0, L, g->x, g->item, y, r2, s0, s1, nl->idx, nnz);
+          else
+            nnz = scan(dim, per, L, g->x, g->item, y, r2, s0, s1, nl->idx, nnz);
         }
+      }
     sort_ints(nl->idx + row0, nnz - row0);
     nl->ptr[q + 1] = nnz;
   }

@@ -164,11 +164,11 @@ static int check_spec(const mfs_lattice_spec *s)
   return MFS_OK;
 }
 
-static void perturb(mfs_particles *p, double frac, unsigned long seed)
+static int perturb(mfs_particles *p, double frac, unsigned long seed)
 {
   gsl_rng *rng = gsl_rng_alloc(gsl_rng_mt19937);
   if (!rng)
-    return;
+    return MFS_ENOMEM;
   gsl_rng_set(rng, seed);
   double h[2] = {p->dx, p->dy};
   for (size_t I = 0; I < p->n; I++) {
@@ -185,6 +185,7 @@ static void perturb(mfs_particles *p, double frac, unsigned long seed)
     }
   }
   gsl_rng_free(rng);
+  return MFS_OK;
 }
 
 mfs_particles *mfs_lattice_alloc(const mfs_lattice_spec *s, int *status)
@@ -248,10 +249,13 @@ mfs_particles *mfs_lattice_alloc(const mfs_lattice_spec *s, int *status)
     p->box.hi[0] = (p->nx - 1) * s->dx + (s->lattice == MFS_LATTICE_HEX ? 0.5 * s->dx : 0.0);
     p->box.hi[1] = (p->ny - 1) * p->dy;
   }
-  if (s->perturb > 0.0)
-    perturb(p, s->perturb, s->seed);
+  if (s->perturb > 0.0 && perturb(p, s->perturb, s->seed) != MFS_OK)
+    goto fail;
 
   mfs_cell_kind kind = s->lattice == MFS_LATTICE_SQUARE ? s->cells : MFS_CELLS_TRI;
+  if (dim == 1)
+    kind = MFS_CELLS_QUAD;
+  p->cells = kind;
   p->nvert = dim == 1 ? 2 : (kind == MFS_CELLS_QUAD ? 4 : 3);
   size_t maxcell = (size_t)p->nx * p->ny * (p->nvert == 3 ? 2 : 1);
   p->conn = malloc(maxcell * p->nvert * sizeof *p->conn);

@@ -51,6 +51,7 @@ typedef struct {
   double a1[2], a2[2];   /* lattice vectors */
   int nx, ny;            /* as in the spec */
   /* background cells */
+  mfs_cell_kind cells;   /* how the cells were cut (hex and 1D: MFS_CELLS_TRI / MFS_CELLS_QUAD) */
   int nvert;             /* 2 (interval), 3 (triangle), 4 (quadrilateral, counter-clockwise) */
   size_t ncell;
   int *conn;             /* ncell*nvert node indices */

@@ -72,9 +72,11 @@ static void centroid(const mfs_particles *p, size_t c, double *x)
 }
 
 /* Gauss-Legendre points and weights on [0, 1]. */
-static void gauss01(int n, double *t, double *w)
+static int gauss01(int n, double *t, double *w)
 {
   gsl_integration_glfixed_table *tab = gsl_integration_glfixed_table_alloc((size_t)n);
+  if (!tab)
+    return MFS_ENOMEM;
   for (int i = 0; i < n; i++) {
     double xi, wi;
     gsl_integration_glfixed_point(0.0, 1.0, (size_t)i, &xi, &wi, tab);
@@ -82,6 +84,7 @@ static void gauss01(int n, double *t, double *w)
     w[i] = wi;
   }
   gsl_integration_glfixed_table_free(tab);
+  return MFS_OK;
 }
 
 static void gauss_cell(mfs_quad *q, const mfs_particles *p, size_t c, int n, const double *t,
@@ -134,8 +137,8 @@ mfs_quad *mfs_quad_alloc(const mfs_quad_rule *rule, const mfs_particles *p, int 
   if (st != MFS_OK)
     goto fail;
   /* the particles' cells must be the ones the rule is defined on */
-  int want = p->dim == 1 ? 2 : (p->lattice == MFS_LATTICE_HEX || rule->cells != MFS_CELLS_QUAD ? 3 : 4);
-  if (rule->kind != MFS_QK_NODAL && rule->kind != MFS_QK_GAUSS && p->nvert != want) {
+  int cells_ok = p->dim == 1 || p->lattice == MFS_LATTICE_HEX || p->cells == rule->cells;
+  if (rule->kind != MFS_QK_NODAL && rule->kind != MFS_QK_GAUSS && !cells_ok) {
     st = MFS_EINVAL;
     goto fail;
   }
@@ -181,7 +184,8 @@ mfs_quad *mfs_quad_alloc(const mfs_quad_rule *rule, const mfs_particles *p, int 
   }
   if (rule->kind == MFS_QK_GAUSS) {
     double t[10], tw[10];
-    gauss01(g, t, tw);
+    if (gauss01(g, t, tw) != MFS_OK)
+      goto fail;
     for (size_t c = 0; c < p->ncell; c++)
       gauss_cell(q, p, c, g, t, tw);
   }

@@ -395,11 +395,11 @@ static int rl_eval(const mfs_shape_ctx *c, int nn, const double *d, const double
   return s2;
 }
 
-const mfs_shape_type mfs_shape_sph = {"sph", 1, sph_eval};
-const mfs_shape_type mfs_shape_shepard = {"shepard", 0, shepard_eval};
-const mfs_shape_type mfs_shape_mls = {"mls", 0, mls_eval};
-const mfs_shape_type mfs_shape_kb = {"kb", 0, kb_eval};
-const mfs_shape_type mfs_shape_rl = {"rl", 1, rl_eval};
+const mfs_shape_type mfs_shape_sph = {"sph", 1, 0, sph_eval};
+const mfs_shape_type mfs_shape_shepard = {"shepard", 0, 1, shepard_eval};
+const mfs_shape_type mfs_shape_mls = {"mls", 0, 1, mls_eval};
+const mfs_shape_type mfs_shape_kb = {"kb", 0, 1, kb_eval};
+const mfs_shape_type mfs_shape_rl = {"rl", 1, 1, rl_eval};
 
 const mfs_shape_type *const mfs_shape_types[] = {&mfs_shape_sph, &mfs_shape_shepard,
                                                   &mfs_shape_mls, &mfs_shape_kb, &mfs_shape_rl,

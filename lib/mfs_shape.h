@@ -33,7 +33,8 @@ typedef struct {
 
 typedef struct {
   const char *name;
-  int uses_volumes; /* reads v[] */
+  int uses_volumes;        /* reads v[] */
+  int partition_of_unity;  /* sum_J phi_J = 1 (all but sph) */
   /* d: nn*dim offsets X_J - X; v: nn volumes (may be NULL if !uses_volumes);
    * self: index in 0..nn-1 of the neighbour located at X, or -1;
    * order: 1 or 2; out: nn*ncomp; work: mfs_shape_work_len(dim, nn) doubles;

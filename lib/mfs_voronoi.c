@@ -10,12 +10,14 @@
 #define MAXV 64
 
 /* Keep the part of polygon P (n vertices, relative to the point) with
- * y.d <= |d|^2/2.  Returns the new vertex count. */
+ * y.d <= |d|^2/2.  Returns the new vertex count, -1 if it would exceed MAXV. */
 static int clip(double *P, int n, const double *d, double *tmp)
 {
   double c = 0.5 * (d[0] * d[0] + d[1] * d[1]);
   int m = 0;
-  for (int k = 0; k < n && m < MAXV - 1; k++) {
+  for (int k = 0; k < n; k++) {
+    if (m >= MAXV - 2)
+      return -1;
     const double *a = P + 2 * k, *b = P + 2 * ((k + 1) % n);
     double fa = a[0] * d[0] + a[1] * d[1] - c, fb = b[0] * d[0] + b[1] * d[1] - c;
     if (fa <= 0.0) {
@@ -88,7 +90,7 @@ int mfs_voronoi_areas(size_t n, const double *x, const mfs_box *box, double *are
       double y1 = box->periodic ? 0.5 * Ly : box->hi[1] - xi[1];
       double init[8] = {x0, y0, x1, y0, x1, y1, x0, y1};
       memcpy(P, init, sizeof init);
-      for (size_t e = nl->ptr[i]; e < nl->ptr[i + 1] && nv > 0; e++) {
+      for (size_t e = nl->ptr[i]; e < nl->ptr[i + 1] && nv != 0; e++) {
         int j = nl->idx[e];
         if ((size_t)j == i)
           continue;
@@ -97,6 +99,12 @@ int mfs_voronoi_areas(size_t n, const double *x, const mfs_box *box, double *are
         if (d[0] == 0.0 && d[1] == 0.0)
           continue;
         nv = clip(P, nv, d, tmp);
+        if (nv < 0)
+          break;
+      }
+      if (nv < 0) { /* a cell with more than MAXV vertices: not a sane point set */
+        st = MFS_EDOMAIN;
+        break;
       }
       double rmax;
       double A = poly_area(P, nv, &rmax);
@@ -108,6 +116,8 @@ int mfs_voronoi_areas(size_t n, const double *x, const mfs_box *box, double *are
     }
     mfs_nlist_free(nl);
     mfs_grid_free(g);
+    if (st != MFS_OK)
+      break;
     R *= 2.0;
   }
   free(done);

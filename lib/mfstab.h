@@ -3,6 +3,7 @@
 #define MFSTAB_H
 
 #include "mfs_assemble.h"
+#include "mfs_closed.h"
 #include "mfs_csr.h"
 #include "mfs_dispersion.h"
 #include "mfs_kernel.h"

@@ -1,0 +1,118 @@
+#!/usr/bin/env bash
+# Tests of the mfstab command-line program: exit codes, one-line errors that
+# name the parameter, no output file after a failure, and the numbers of two
+# good runs (paper 003 Table I, and the linear finite element in 1D).
+# usage: bash tests/test_cli.sh /path/to/mfstab
+# One line per failed check; the last line counts them; exit 1 on any failure.
+set -u
+M=${1:?usage: bash tests/test_cli.sh /path/to/mfstab}
+tmp=$(mktemp -d)
+trap 'rm -rf "$tmp"' EXIT
+pass=0
+fail=0
+
+ok() { pass=$((pass + 1)); }
+ko() {
+  fail=$((fail + 1))
+  echo "FAIL: $*"
+}
+# check DESCRIPTION COMMAND...: passes when COMMAND succeeds.
+check() {
+  local what=$1
+  shift
+  if "$@"; then ok; else ko "$what"; fi
+}
+
+# run ARGS...: runs mfstab; sets rc, and out/err to files holding stdout/stderr.
+out=$tmp/stdout
+err=$tmp/stderr
+run() {
+  "$M" "$@" >"$out" 2>"$err"
+  rc=$?
+}
+nlines() { wc -l <"$1" | tr -d ' '; }
+no_tmp_left() { ! compgen -G "$tmp/res/*.tmp*" >/dev/null; }
+
+# --- help and commands -------------------------------------------------------
+run --help
+check "mfstab --help: exit $rc, want 0" test "$rc" -eq 0
+check "mfstab --help: no usage on stdout" grep -q '^usage: mfstab' "$out"
+run stencil --help
+check "mfstab stencil --help: exit $rc, want 0" test "$rc" -eq 0
+check "mfstab stencil --help: no usage on stdout" grep -q '^usage: mfstab stencil' "$out"
+check "mfstab stencil --help: options not listed" grep -q -- '--dilation' "$out"
+run frobnicate
+check "mfstab frobnicate: exit $rc, want 2" test "$rc" -eq 2
+check "mfstab frobnicate: $(nlines "$err") lines on stderr, want 1" test "$(nlines "$err")" -eq 1
+check "mfstab frobnicate: message does not name the command" grep -q "frobnicate" "$err"
+run
+check "mfstab (no command): exit $rc, want 2" test "$rc" -eq 2
+
+# --- bad input ---------------------------------------------------------------
+# bad_input PARAM ARGS...: mfstab stencil -o FILE ARGS must exit 2 with one
+# line on stderr naming PARAM, print nothing on stdout, and leave no file.
+bad_input() {
+  local param=$1
+  shift
+  mkdir -p "$tmp/res"
+  local res=$tmp/res/out.csv
+  run stencil -o "$res" "$@"
+  local what="mfstab stencil $*"
+  check "$what: exit $rc, want 2" test "$rc" -eq 2
+  check "$what: $(nlines "$err") lines on stderr, want 1" test "$(nlines "$err")" -eq 1
+  check "$what: stderr does not name $param: $(head -c 200 "$err")" grep -q -F -- "$param" "$err"
+  check "$what: output on stdout" test ! -s "$out"
+  check "$what: output file left behind" test ! -e "$res"
+  check "$what: temporary file left behind" no_tmp_left
+  rm -rf "$tmp/res"
+}
+bad_input --frobnicate --frobnicate 1
+bad_input --dilation --dilation 2.x
+bad_input --dilation --dilation 0
+bad_input --dilation --dilation -1
+bad_input --dilation --dim 2 --dilation 0.9 --shape mls
+bad_input --kernel --kernel gaussian
+bad_input --quadrature --quadrature gauss0
+bad_input --quadrature --quadrature simpson
+bad_input --quadrature --dim 1 --quadrature stress-quad
+bad_input --quadrature --dim 2 --lattice square --quadrature stress-hex
+bad_input --dilation --dilation
+bad_input --dim --dim 3
+
+# --- a good run: Table I, 2x2 cell quadrature --------------------------------
+mkdir -p "$tmp/res"
+csv=$tmp/res/table1.csv
+args=(stencil --dim 2 --kernel cubic --dilation 2 --shape mls --quadrature gauss2)
+run "${args[@]}" -o "$csv"
+check "mfstab ${args[*]} -o FILE: exit $rc, want 0: $(head -c 200 "$err")" test "$rc" -eq 0
+check "mfstab ${args[*]} -o FILE: stderr not empty" test ! -s "$err"
+check "mfstab ${args[*]} -o FILE: output on stdout" test ! -s "$out"
+check "mfstab ${args[*]} -o FILE: no output file" test -s "$csv"
+check "mfstab ${args[*]} -o FILE: temporary file left behind" no_tmp_left
+if [ -s "$csv" ]; then
+  check "header is '$(head -n 1 "$csv")', want 'j,k,K,M'" test "$(head -n 1 "$csv")" = "j,k,K,M"
+  check "NaN or inf in the output" bash -c "! grep -qiE 'nan|inf' '$csv'"
+  k00=$(awk -F, '$1 == 0 && $2 == 0 { printf "%.4f", $3 }' "$csv")
+  check "K(0,0) = '$k00', want 0.6507 (Table I, cell integration 2x2)" test "$k00" = "0.6507"
+  check "every row has 4 fields" awk -F, 'NF != 4 { exit 1 }' "$csv"
+  run "${args[@]}"
+  check "standard output differs from the -o file" cmp -s "$out" "$csv"
+fi
+rm -rf "$tmp/res"
+
+# --- 1D, D = 1: EFG reproduces the hat functions, K = [-1 2 -1] --------------
+args=(stencil --dim 1 --dilation 1 --quadrature gauss2 --shape mls)
+run "${args[@]}"
+check "mfstab ${args[*]}: exit $rc, want 0: $(head -c 200 "$err")" test "$rc" -eq 0
+msg=$(awk -F, '
+  NR == 1 { next }
+  { want = ($1 == 0) ? 2 : (($1 == 1 || $1 == -1) ? -1 : 0); seen[$1] = 1
+    d = $3 - want; if (d < 0) d = -d
+    if (d > 1e-12) printf "K(%s,%s) = %s, want %d; ", $1, $2, $3, want }
+  END { for (j = -1; j <= 1; j++) if (!((j "") in seen)) printf "K(%d,0) missing; ", j }' "$out")
+check "1D linear finite element: $msg" test -z "$msg"
+m00=$(awk -F, '$1 == 0 && $2 == 0 { print $4 }' "$out")
+check "1D lumped mass M(0,0) = '$m00', want 1 (density * dx)" awk -v m="$m00" 'BEGIN { d = m - 1; exit !(m != "" && d < 1e-12 && d > -1e-12) }'
+
+echo "test_cli: $pass passed, $fail failed"
+[ "$fail" -eq 0 ]
