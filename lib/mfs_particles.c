@@ -7,18 +7,6 @@
 
 #include "mfs_status.h"
 
-void mfs_box_delta(const mfs_box *box, const double *a, const double *b, double *d)
-{
-  for (int k = 0; k < box->dim; k++) {
-    double t = b[k] - a[k];
-    if (box->periodic) {
-      double L = box->hi[k] - box->lo[k];
-      t -= L * nearbyint(t / L);
-    }
-    d[k] = t;
-  }
-}
-
 void mfs_particles_free(mfs_particles *p)
 {
   if (!p)

@@ -4,6 +4,7 @@
 #ifndef MFS_PARTICLES_H
 #define MFS_PARTICLES_H
 
+#include <math.h>
 #include <stddef.h>
 
 typedef enum { MFS_LATTICE_LINE, MFS_LATTICE_SQUARE, MFS_LATTICE_HEX } mfs_lattice_kind;
@@ -22,8 +23,19 @@ typedef struct {
   int periodic;
 } mfs_box;
 
-/* Displacement b - a, with the minimum image when the box is periodic. */
-void mfs_box_delta(const mfs_box *box, const double *a, const double *b, double *d);
+/* Displacement b - a, with the minimum image when the box is periodic.
+ * Inline: it is called once per neighbour in every table build. */
+static inline void mfs_box_delta(const mfs_box *box, const double *a, const double *b, double *d)
+{
+  for (int k = 0; k < box->dim; k++) {
+    double t = b[k] - a[k];
+    if (box->periodic) {
+      double L = box->hi[k] - box->lo[k];
+      t -= L * nearbyint(t / L);
+    }
+    d[k] = t;
+  }
+}
 
 /* What to build. */
 typedef struct {

@@ -166,7 +166,10 @@ static void zeros2d(void)
           scale = fabs(creal(w[b])) > scale ? fabs(creal(w[b])) : scale;
           /* omega2 / |k - G|^2: a spurious zero shows, the acoustic branch
            * vanishing like |k - G|^2 at reciprocal vectors G does not */
-          double r = b > 0 ? creal(w[b]) : creal(w[b]) / dist2_recip(R, kv);
+          double g2 = dist2_recip(R, kv);
+          if (b == 0 && g2 < 1e-12) /* the rigid mode at a reciprocal vector */
+            continue;
+          double r = b > 0 ? creal(w[b]) : creal(w[b]) / g2;
           mn = r < mn ? r : mn;
         }
       }
