@@ -103,6 +103,28 @@ def main():
         fig.savefig(os.path.join(d, name + ".png"), dpi=110)
         plt.close(fig)
 
+    # Figs 17-18: maximum eigenvalue against the dilation, exact and bounds
+    for name in ("fig17", "fig18"):
+        fig, axes = plt.subplots(1, 2, figsize=(10, 4))
+        for ax, kern in zip(axes, ("cubic", "quartic")):
+            rows = read(os.path.join(d, f"{name}_{kern}.csv"))
+            for n in sorted({r["nodes"] for r in rows}, key=int):
+                rr = [r for r in rows if r["nodes"] == n]
+                D = [float(r["dilation"]) for r in rr]
+                ax.plot(D, [float(r["lambda_max_dx2"]) for r in rr], "o-", ms=3,
+                        label=f"lambda_max, {n} nodes")
+                ax.plot(D, [float(r["bound_dx2"]) for r in rr], "s--", ms=3,
+                        label=f"element bound, {n} nodes")
+            ax.plot(D, [float(r["alpha_dx2"]) for r in rr], "k:", label="closed form alpha/D^2")
+            ax.set_yscale("log")
+            ax.set_xlabel("dilation D")
+            ax.set_ylabel(r"$\lambda\,\Delta x^2 / c^2$")
+            ax.set_title(f"{name}: {kern} MLS, gauss2, lumped mass", fontsize=9)
+            ax.legend(fontsize=7)
+        fig.tight_layout()
+        fig.savefig(os.path.join(d, name + ".png"), dpi=110)
+        plt.close(fig)
+
 
 if __name__ == "__main__":
     main()

@@ -52,12 +52,16 @@ check "mfstab (no command): exit $rc, want 2" test "$rc" -eq 2
 # bad_input PARAM ARGS...: mfstab stencil -o FILE ARGS must exit 2 with one
 # line on stderr naming PARAM, print nothing on stdout, and leave no file.
 bad_input() {
-  local param=$1
-  shift
+  bad_cmd stencil "$@"
+}
+# bad_cmd COMMAND PARAM ARGS...: the same for any command.
+bad_cmd() {
+  local cmd=$1 param=$2
+  shift 2
   mkdir -p "$tmp/res"
   local res=$tmp/res/out.csv
-  run stencil -o "$res" "$@"
-  local what="mfstab stencil $*"
+  run "$cmd" -o "$res" "$@"
+  local what="mfstab $cmd $*"
   check "$what: exit $rc, want 2" test "$rc" -eq 2
   check "$what: $(nlines "$err") lines on stderr, want 1" test "$(nlines "$err")" -eq 1
   check "$what: stderr does not name $param: $(head -c 200 "$err")" grep -q -F -- "$param" "$err"
@@ -78,6 +82,51 @@ bad_input --quadrature --dim 1 --quadrature stress-quad
 bad_input --quadrature --dim 2 --lattice square --quadrature stress-hex
 bad_input --dilation --dilation
 bad_input --dim --dim 3
+
+# dispersion (von Neumann analysis)
+bad_cmd dispersion --theta --dim 1 --theta 0,45
+bad_cmd dispersion --stress --stress ''
+bad_cmd dispersion --stress --stress 0.1,,0.2
+bad_cmd dispersion --stress --stress 0.1,x
+bad_cmd dispersion --dilation --dilation 1.5,0
+bad_cmd dispersion --dilation --dim 2 --dilation 0.9
+bad_cmd dispersion --ls-length --ls-length 1
+bad_cmd dispersion --frame --frame spatial
+bad_cmd dispersion --points --points 1
+bad_cmd dispersion --kappa --kappa 0.5 --points 10
+bad_cmd dispersion --stretch --dim 2 --stretch 1.1
+
+# eigs and bound (finite models)
+bad_cmd eigs --nodes --nodes 4 --periodic --dilation 2
+bad_cmd eigs --nodes --nodes 3 --dilation 3
+bad_cmd eigs --periodic --periodic --fixed ends
+bad_cmd eigs --periodic --dim 2 --periodic --fixed boundary
+bad_cmd eigs --modulus --modulus 0
+bad_cmd eigs --modulus --modulus -1
+bad_cmd eigs --density --density 0
+bad_cmd eigs --nodes --nodes 10,x
+bad_cmd eigs --nodes --nodes 10,10
+bad_cmd eigs --nodes --dim 2 --nodes 10,10,10
+bad_cmd eigs --nodes --nodes 1
+bad_cmd eigs --fixed --dim 2 --fixed ends
+bad_cmd eigs --tol --tol 0
+bad_cmd bound --nodes --nodes 4 --periodic --dilation 2
+bad_cmd bound --zero-modes --zero-modes
+
+# a numerical failure (ARPACK stopped after one iteration): exit 1, no file
+mkdir -p "$tmp/res"
+run eigs --nodes 3000 --maxiter 1 --ncv 3 --arpack-tol 1e-15 -o "$tmp/res/out.csv"
+check "eigs with --maxiter 1: exit $rc, want 1" test "$rc" -eq 1
+check "eigs with --maxiter 1: $(nlines "$err") lines on stderr, want 1" test "$(nlines "$err")" -eq 1
+check "eigs with --maxiter 1: output file left behind" test ! -e "$tmp/res/out.csv"
+check "eigs with --maxiter 1: temporary file left behind" no_tmp_left
+rm -rf "$tmp/res"
+
+# the linear finite element: 1D, D = 1, gauss2, 41 nodes on [0, 1]: lambda_max dx^2 = 4
+run eigs --nodes 41 --length 1 --quadrature gauss2 --dilation 1
+check "eigs linear FE: exit $rc: $(head -c 200 "$err")" test "$rc" -eq 0
+lm=$(awk -F, 'NR == 1 { for (i = 1; i <= NF; i++) h[$i] = i } NR == 2 { printf "%.10f", $h["lambda_max"] / 1600 }' "$out")
+check "eigs linear FE: lambda_max dx^2 = '$lm', want 4" awk -v v="$lm" 'BEGIN { d = v - 4; exit !(v != "" && d < 1e-9 && d > -1e-9) }'
 
 # --- a good run: Table I, 2x2 cell quadrature --------------------------------
 mkdir -p "$tmp/res"

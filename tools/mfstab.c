@@ -12,6 +12,8 @@ static const char usage[] =
   "commands:\n"
   "  stencil      stiffness and mass stencil of an interior node of an infinite lattice\n"
   "  dispersion   von Neumann dispersion curves and stability classification\n"
+  "  eigs         extreme eigenvalues, zero-energy modes and critical time step of a finite model\n"
+  "  bound        cheap element eigenvalue bound and critical time step (eqs 123-146)\n"
   "  reproduce    regenerate the reproduced tables and figures into notebooks-data/\n";
 
 void opt_init(opt_iter *it, int argc, char **argv, const char *help, const char *const *flags)
@@ -89,12 +91,13 @@ int main(int argc, char **argv)
   static const struct {
     const char *name;
     int (*run)(int, char **);
-  } cmds[] = {{"stencil", cmd_stencil}, {"dispersion", cmd_dispersion}, {"reproduce", cmd_reproduce}};
+  } cmds[] = {{"stencil", cmd_stencil}, {"dispersion", cmd_dispersion}, {"reproduce", cmd_reproduce},
+                 {"eigs", cmd_eigs}, {"bound", cmd_bound}};
   for (size_t i = 0; i < sizeof cmds / sizeof cmds[0]; i++)
     if (strcmp(argv[1], cmds[i].name) == 0) {
       cli_command = cmds[i].name;
       return cmds[i].run(argc - 1, argv + 1);
     }
-  fprintf(stderr, "mfstab: '%s': unknown command; allowed: stencil, dispersion, reproduce\n", argv[1]);
+  fprintf(stderr, "mfstab: '%s': unknown command; allowed: stencil, dispersion, eigs, bound, reproduce\n", argv[1]);
   return 2;
 }

@@ -1,0 +1,825 @@
+#include "mfs_eigen.h"
+
+#include <lapacke.h>
+#include <math.h>
+#include <stdint.h>
+#include <stdlib.h>
+#include <string.h>
+#include <suitesparse/cholmod.h>
+
+#include "mfs_status.h"
+
+/* ARPACK (arpack-ng, gfortran, 32-bit integers): Fortran symbols with the
+ * hidden string lengths last. */
+extern void dsaupd_(int *ido, const char *bmat, const int *n, const char *which, const int *nev,
+                    const double *tol, double *resid, const int *ncv, double *v, const int *ldv,
+                    int *iparam, int *ipntr, double *workd, double *workl, const int *lworkl,
+                    int *info, size_t bmat_len, size_t which_len);
+extern void dseupd_(const int *rvec, const char *howmny, int *select, double *d, double *z,
+                    const int *ldz, const double *sigma, const char *bmat, const int *n,
+                    const char *which, const int *nev, const double *tol, double *resid,
+                    const int *ncv, double *v, const int *ldv, int *iparam, int *ipntr,
+                    double *workd, double *workl, const int *lworkl, int *info,
+                    size_t howmny_len, size_t bmat_len, size_t which_len);
+
+/* ------------------------------------------------------------------ */
+/* small helpers                                                        */
+
+static double dot(size_t n, const double *x, const double *y)
+{
+  double s = 0.0;
+  for (size_t i = 0; i < n; i++)
+    s += x[i] * y[i];
+  return s;
+}
+
+static double norm2(size_t n, const double *x)
+{
+  return sqrt(dot(n, x, x));
+}
+
+/* y = A x for a CSR matrix; restrict-qualified so that the row loop
+ * vectorizes (this is the cost of every Lanczos step of mfs_eig_max). */
+static void matvec(const mfs_csr *A, const double *restrict x, double *restrict y)
+{
+  const size_t *restrict ptr = A->ptr;
+  const int *restrict idx = A->idx;
+  const double *restrict val = A->val;
+  size_t nrow = A->nrow;
+  for (size_t i = 0; i < nrow; i++) {
+    double s = 0.0;
+    for (size_t e = ptr[i]; e < ptr[i + 1]; e++)
+      s += val[e] * x[idx[e]];
+    y[i] = s;
+  }
+}
+
+/* y = M x with the pencil's mass. */
+static void mass_apply(const mfs_pencil *P, const double *x, double *y)
+{
+  size_t n = P->K->nrow;
+  if (P->M)
+    matvec(P->M, x, y);
+  else
+    for (size_t i = 0; i < n; i++)
+      y[i] = P->m[i] * x[i];
+}
+
+/* A fixed pseudo-random vector in [-1, 1] (splitmix64), so that ARPACK runs
+ * do not depend on ARPACK's internal seed and thus on earlier calls. */
+static void start_vector(size_t n, double *x)
+{
+  uint64_t s = 0x9e3779b97f4a7c15ULL;
+  for (size_t i = 0; i < n; i++) {
+    uint64_t z = (s += 0x9e3779b97f4a7c15ULL);
+    z = (z ^ (z >> 30)) * 0xbf58476d1ce4e5b9ULL;
+    z = (z ^ (z >> 27)) * 0x94d049bb133111ebULL;
+    z ^= z >> 31;
+    x[i] = 2.0 * ((double)(z >> 11) * 0x1.0p-53) - 1.0;
+  }
+}
+
+static int pencil_check(const mfs_pencil *P)
+{
+  if (!P || !P->K || (P->M == NULL) == (P->m == NULL))
+    return MFS_EINVAL;
+  size_t n = P->K->nrow;
+  if (n < 2 || P->K->ncol != n || n > (size_t)INT32_MAX / 4)
+    return MFS_EINVAL;
+  if (P->M && (P->M->nrow != n || P->M->ncol != n))
+    return MFS_EINVAL;
+  if (P->m)
+    for (size_t i = 0; i < n; i++)
+      if (!(P->m[i] > 0.0) || !isfinite(P->m[i]))
+        return MFS_EINVAL;
+  return MFS_OK;
+}
+
+static void info_reset(mfs_eig_info *info)
+{
+  if (info)
+    *info = (mfs_eig_info){0, "", 0, 0, 0, 0, 0, 0.0};
+}
+
+/* ------------------------------------------------------------------ */
+/* CHOLMOD: factorizations of symmetric positive definite matrices     */
+
+typedef struct {
+  cholmod_common c;
+  int started;
+  cholmod_factor *L;
+  cholmod_dense *B, *X, *Y, *E;
+} chol_solver;
+
+/* The upper triangle of a symmetric CSR matrix as a CHOLMOD matrix (the
+ * rows of the CSR matrix are the columns of its transpose, which is itself). */
+static cholmod_sparse *upper_of(const mfs_csr *A, cholmod_common *c)
+{
+  size_t n = A->nrow, nnz = 0;
+  for (size_t j = 0; j < n; j++)
+    for (size_t e = A->ptr[j]; e < A->ptr[j + 1]; e++)
+      nnz += (size_t)A->idx[e] <= j;
+  cholmod_sparse *S = cholmod_l_allocate_sparse(n, n, nnz, 0, 1, 1, CHOLMOD_REAL, c);
+  if (!S)
+    return NULL;
+  SuiteSparse_long *Sp = S->p, *Si = S->i;
+  double *Sx = S->x;
+  size_t pos = 0;
+  Sp[0] = 0;
+  for (size_t j = 0; j < n; j++) {
+    for (size_t e = A->ptr[j]; e < A->ptr[j + 1]; e++)
+      if ((size_t)A->idx[e] <= j) {
+        Si[pos] = A->idx[e];
+        Sx[pos] = A->val[e];
+        pos++;
+      }
+    Sp[j + 1] = (SuiteSparse_long)pos;
+  }
+  if (!cholmod_l_sort(S, c)) {
+    cholmod_l_free_sparse(&S, c);
+    return NULL;
+  }
+  return S;
+}
+
+static cholmod_sparse *diag_of(size_t n, const double *d, cholmod_common *c)
+{
+  cholmod_sparse *S = cholmod_l_allocate_sparse(n, n, n, 1, 1, 1, CHOLMOD_REAL, c);
+  if (!S)
+    return NULL;
+  SuiteSparse_long *Sp = S->p, *Si = S->i;
+  double *Sx = S->x;
+  for (size_t j = 0; j < n; j++) {
+    Sp[j] = (SuiteSparse_long)j;
+    Si[j] = (SuiteSparse_long)j;
+    Sx[j] = d[j];
+  }
+  Sp[n] = (SuiteSparse_long)n;
+  return S;
+}
+
+static void chol_free(chol_solver *s)
+{
+  if (!s->started)
+    return;
+  cholmod_l_free_factor(&s->L, &s->c);
+  cholmod_l_free_dense(&s->B, &s->c);
+  cholmod_l_free_dense(&s->X, &s->c);
+  cholmod_l_free_dense(&s->Y, &s->c);
+  cholmod_l_free_dense(&s->E, &s->c);
+  cholmod_l_finish(&s->c);
+  s->started = 0;
+}
+
+static void chol_start(chol_solver *s)
+{
+  memset(s, 0, sizeof *s);
+  cholmod_l_start(&s->c);
+  s->c.print = 0; /* the library never prints */
+  s->c.error_handler = NULL;
+  s->started = 1;
+}
+
+/* Factor A + shift * B (B may be NULL: A alone; Bdiag: a diagonal B).
+ * Returns MFS_OK, MFS_EDOMAIN (not positive definite), MFS_ENOMEM. */
+static int chol_factor(chol_solver *s, const mfs_csr *A, const mfs_csr *B, const double *Bdiag,
+                       double shift, mfs_eig_info *info)
+{
+  cholmod_common *c = &s->c;
+  cholmod_sparse *Au = upper_of(A, c), *Bu = NULL, *F = NULL;
+  int st = MFS_ENOMEM;
+  if (!Au)
+    goto done;
+  if (B || Bdiag) {
+    Bu = B ? upper_of(B, c) : diag_of(A->nrow, Bdiag, c);
+    if (!Bu)
+      goto done;
+    double al[2] = {1.0, 0.0}, be[2] = {shift, 0.0};
+    F = cholmod_l_add(Au, Bu, al, be, 1, 1, c);
+    if (!F)
+      goto done;
+  } else {
+    F = Au;
+    Au = NULL;
+  }
+  s->L = cholmod_l_analyze(F, c);
+  if (!s->L)
+    goto done;
+  int ok = cholmod_l_factorize(F, s->L, c);
+  if (ok && c->status == CHOLMOD_OK && !s->L->is_super && !s->L->is_ll) {
+    /* a simplicial LDL' factorization succeeds on indefinite matrices:
+     * positive definiteness is D > 0 (the diagonal of the factor) */
+    const SuiteSparse_long *Lp = s->L->p;
+    const double *Lx = s->L->x;
+    for (size_t j = 0; j < s->L->n; j++)
+      if (!(Lx[Lp[j]] > 0.0)) {
+        c->status = CHOLMOD_NOT_POSDEF;
+        break;
+      }
+  }
+  if (!ok || c->status != CHOLMOD_OK || s->L->minor < s->L->n) {
+    st = c->status == CHOLMOD_OUT_OF_MEMORY ? MFS_ENOMEM : MFS_EDOMAIN;
+    if (info) {
+      info->routine = "cholmod";
+      info->cholmod_status = c->status != CHOLMOD_OK ? c->status : CHOLMOD_NOT_POSDEF;
+    }
+    goto done;
+  }
+  s->B = cholmod_l_allocate_dense(A->nrow, 1, A->nrow, CHOLMOD_REAL, c);
+  if (!s->B)
+    goto done;
+  st = MFS_OK;
+done:
+  cholmod_l_free_sparse(&Au, c);
+  cholmod_l_free_sparse(&Bu, c);
+  cholmod_l_free_sparse(&F, c);
+  return st;
+}
+
+/* y = F^-1 b. */
+static int chol_solve(chol_solver *s, const double *b, double *y)
+{
+  size_t n = s->B->nrow;
+  memcpy(s->B->x, b, n * sizeof *b);
+  if (!cholmod_l_solve2(CHOLMOD_A, s->L, s->B, NULL, &s->X, NULL, &s->Y, &s->E, &s->c))
+    return MFS_ENOMEM;
+  memcpy(y, s->X->x, n * sizeof *y);
+  return MFS_OK;
+}
+
+/* ------------------------------------------------------------------ */
+/* ARPACK reverse communication                                        */
+
+/* The operators of one run.  op(ctx, ido, x, y, bx): ido -1 or 1: y = OP x
+ * (mode 2: also x <- K x; mode 3 with ido 1: bx = M x is given); ido 2:
+ * y = B x. */
+typedef struct {
+  int n, mode, nev, ncv, maxiter;
+  char bmat;
+  const char *which;
+  double sigma, tol;
+  int (*op)(void *ctx, int ido, double *x, double *y, const double *bx);
+  void *ctx;
+  const double *start; /* initial residual vector (n) */
+  /* results: nev eigenvalues d (ascending) and eigenvectors z (n x nev) */
+  double *d, *z;
+} arpack_job;
+
+static int arpack_run(arpack_job *j, mfs_eig_info *info)
+{
+  int n = j->n, nev = j->nev, ncv = j->ncv, ldv = n, lworkl = ncv * (ncv + 8);
+  int ido = 0, ainfo = 1, iparam[11] = {0}, ipntr[14] = {0};
+  int st = MFS_ENOMEM;
+  double *resid = malloc((size_t)n * sizeof *resid);
+  double *v = malloc((size_t)n * (size_t)ncv * sizeof *v);
+  double *workd = malloc(3 * (size_t)n * sizeof *workd);
+  double *workl = malloc((size_t)lworkl * sizeof *workl);
+  double *dd = malloc((size_t)ncv * 2 * sizeof *dd);
+  int *select = malloc((size_t)ncv * sizeof *select);
+  if (!resid || !v || !workd || !workl || !dd || !select)
+    goto done;
+  memcpy(resid, j->start, (size_t)n * sizeof *resid);
+  iparam[0] = 1; /* exact shifts */
+  iparam[2] = j->maxiter;
+  iparam[3] = 1;
+  iparam[6] = j->mode;
+  for (;;) {
+    dsaupd_(&ido, &j->bmat, &n, j->which, &nev, &j->tol, resid, &ncv, v, &ldv, iparam, ipntr,
+            workd, workl, &lworkl, &ainfo, 1, 2);
+    if (ido == -1 || ido == 1 || ido == 2) {
+      st = j->op(j->ctx, ido, workd + ipntr[0] - 1, workd + ipntr[1] - 1,
+                 ido == 1 && j->mode == 3 ? workd + ipntr[2] - 1 : NULL);
+      if (st != MFS_OK)
+        goto done;
+      continue;
+    }
+    break;
+  }
+  if (info) {
+    info->iterations += iparam[2];
+    info->matvecs += iparam[8];
+    info->nconv = iparam[4];
+    info->runs++;
+  }
+  if (ainfo == 1) {
+    st = MFS_ENOCONV;
+    if (info) {
+      info->info = 1;
+      info->routine = "dsaupd";
+    }
+    goto done;
+  }
+  if (ainfo != 0) {
+    st = MFS_EARPACK;
+    if (info) {
+      info->info = ainfo;
+      info->routine = "dsaupd";
+    }
+    goto done;
+  }
+  int rvec = 1, einfo = 0;
+  dseupd_(&rvec, "A", select, dd, v, &ldv, &j->sigma, &j->bmat, &n, j->which, &nev, &j->tol,
+          resid, &ncv, v, &ldv, iparam, ipntr, workd, workl, &lworkl, &einfo, 1, 1, 2);
+  if (einfo != 0) {
+    st = MFS_EARPACK;
+    if (info) {
+      info->info = einfo;
+      info->routine = "dseupd";
+    }
+    goto done;
+  }
+  /* ascending eigenvalues with their vectors (selection sort: nev is small) */
+  int *ord = select; /* reuse: ncv >= nev */
+  for (int i = 0; i < nev; i++)
+    ord[i] = i;
+  for (int i = 0; i < nev; i++)
+    for (int k = i + 1; k < nev; k++)
+      if (dd[ord[k]] < dd[ord[i]]) {
+        int t = ord[i];
+        ord[i] = ord[k];
+        ord[k] = t;
+      }
+  for (int i = 0; i < nev; i++) {
+    j->d[i] = dd[ord[i]];
+    if (!isfinite(j->d[i])) {
+      st = MFS_EARPACK;
+      if (info) {
+        info->info = 0;
+        info->routine = "dseupd";
+      }
+      goto done;
+    }
+    if (j->z)
+      memcpy(j->z + (size_t)i * n, v + (size_t)ord[i] * n, (size_t)n * sizeof *v);
+  }
+  st = MFS_OK;
+done:
+  free(resid);
+  free(v);
+  free(workd);
+  free(workl);
+  free(dd);
+  free(select);
+  return st;
+}
+
+static int default_ncv(const mfs_eig_opts *o, int nev, size_t n)
+{
+  int ncv = o && o->ncv > 0 ? o->ncv : (2 * nev + 1 > 20 ? 2 * nev + 1 : 20);
+  if (ncv <= nev)
+    ncv = nev + 1;
+  if ((size_t)ncv > n)
+    ncv = (int)n;
+  return ncv;
+}
+
+/* ------------------------------------------------------------------ */
+/* largest eigenvalue                                                  */
+
+/* A symmetric matrix as its diagonal and strict upper triangle (CSR, rows
+ * sorted), optionally scaled two-sided, A = diag(s) K diag(s): the product
+ * reads half of the entries of K, which is what the Lanczos steps of
+ * mfs_eig_max spend their memory bandwidth on. */
+typedef struct {
+  size_t n;
+  size_t *ptr;
+  int *idx;
+  double *val, *diag;
+} sym_csr;
+
+static void sym_free(sym_csr *A)
+{
+  free(A->ptr);
+  free(A->idx);
+  free(A->val);
+  free(A->diag);
+  memset(A, 0, sizeof *A);
+}
+
+static int sym_from(const mfs_csr *K, const double *s, sym_csr *A)
+{
+  size_t n = K->nrow, nnz = 0;
+  memset(A, 0, sizeof *A);
+  for (size_t i = 0; i < n; i++)
+    for (size_t e = K->ptr[i]; e < K->ptr[i + 1]; e++)
+      nnz += (size_t)K->idx[e] > i;
+  A->n = n;
+  A->ptr = malloc((n + 1) * sizeof *A->ptr);
+  A->idx = malloc((nnz ? nnz : 1) * sizeof *A->idx);
+  A->val = malloc((nnz ? nnz : 1) * sizeof *A->val);
+  A->diag = calloc(n ? n : 1, sizeof *A->diag);
+  if (!A->ptr || !A->idx || !A->val || !A->diag) {
+    sym_free(A);
+    return MFS_ENOMEM;
+  }
+  size_t p = 0;
+  A->ptr[0] = 0;
+  for (size_t i = 0; i < n; i++) {
+    size_t r0 = p;
+    for (size_t e = K->ptr[i]; e < K->ptr[i + 1]; e++) {
+      size_t j = (size_t)K->idx[e];
+      double v = s ? s[i] * K->val[e] * s[j] : K->val[e];
+      if (j == i) {
+        A->diag[i] += v;
+      } else if (j > i) { /* insertion keeps the row sorted whatever K's order */
+        size_t k = p++;
+        for (; k > r0 && A->idx[k - 1] > (int)j; k--) {
+          A->idx[k] = A->idx[k - 1];
+          A->val[k] = A->val[k - 1];
+        }
+        A->idx[k] = (int)j;
+        A->val[k] = v;
+      }
+    }
+    A->ptr[i + 1] = p;
+  }
+  return MFS_OK;
+}
+
+/* y = A x from the upper triangle: y_i += a_ij x_j and y_j += a_ij x_i. */
+static void sym_matvec(const sym_csr *A, const double *restrict x, double *restrict y)
+{
+  const size_t *restrict ptr = A->ptr;
+  const int *restrict idx = A->idx;
+  const double *restrict val = A->val, *restrict dg = A->diag;
+  size_t n = A->n;
+  for (size_t i = 0; i < n; i++)
+    y[i] = dg[i] * x[i];
+  for (size_t i = 0; i < n; i++) {
+    double xi = x[i], s = 0.0;
+    for (size_t e = ptr[i]; e < ptr[i + 1]; e++) {
+      int j = idx[e];
+      s += val[e] * x[j];
+      y[j] += val[e] * xi;
+    }
+    y[i] += s;
+  }
+}
+
+typedef struct {
+  const mfs_pencil *P;
+  sym_csr A;   /* lumped: M^-1/2 K M^-1/2; consistent: K */
+  double *s;   /* lumped: m^-1/2 */
+  double *t;   /* work, n */
+  chol_solver *ch;
+} max_ctx;
+
+/* Mode 1: y = M^-1/2 K M^-1/2 x. */
+static int op_lumped(void *vc, int ido, double *x, double *y, const double *bx)
+{
+  (void)ido;
+  (void)bx;
+  max_ctx *c = vc;
+  sym_matvec(&c->A, x, y);
+  return MFS_OK;
+}
+
+/* Mode 2: y = M^-1 K x and x <- K x; or y = M x. */
+static int op_consistent(void *vc, int ido, double *x, double *y, const double *bx)
+{
+  (void)bx;
+  max_ctx *c = vc;
+  size_t n = c->P->K->nrow;
+  if (ido == 2) {
+    matvec(c->P->M, x, y);
+    return MFS_OK;
+  }
+  sym_matvec(&c->A, x, c->t);
+  memcpy(x, c->t, n * sizeof *x);
+  return chol_solve(c->ch, c->t, y);
+}
+
+/* ||K v - lambda M v|| / (ref ||M v||). */
+static double pair_residual(const mfs_pencil *P, double lambda, double ref, const double *v,
+                            double *w1, double *w2)
+{
+  size_t n = P->K->nrow;
+  matvec(P->K, v, w1);
+  mass_apply(P, v, w2);
+  double nm = norm2(n, w2);
+  for (size_t i = 0; i < n; i++)
+    w1[i] -= lambda * w2[i];
+  double r = norm2(n, w1) / (ref * nm);
+  return isfinite(r) ? r : INFINITY;
+}
+
+int mfs_eig_max(const mfs_pencil *P, const mfs_eig_opts *opts, double *lambda, double *v,
+                mfs_eig_info *info)
+{
+  info_reset(info);
+  int st = pencil_check(P);
+  if (st != MFS_OK)
+    return st;
+  size_t n = P->K->nrow;
+  chol_solver ch = {0};
+  max_ctx c = {P, {0}, NULL, NULL, &ch};
+  double *start = NULL, *z = NULL, *w2 = NULL, d[1];
+  st = MFS_ENOMEM;
+  c.t = malloc(n * sizeof *c.t);
+  start = malloc(n * sizeof *start);
+  z = malloc(n * sizeof *z);
+  w2 = malloc(n * sizeof *w2);
+  if (!c.t || !start || !z || !w2)
+    goto done;
+  start_vector(n, start);
+  arpack_job j = {.n = (int)n,
+                  .nev = 1,
+                  .ncv = default_ncv(opts, 1, n),
+                  .maxiter = opts && opts->maxiter > 0 ? opts->maxiter : 10000,
+                  .which = "LA",
+                  .sigma = 0.0,
+                  .tol = opts && opts->tol > 0.0 ? opts->tol : 0.0,
+                  .ctx = &c,
+                  .start = start,
+                  .d = d,
+                  .z = z};
+  if (P->m) {
+    c.s = malloc(n * sizeof *c.s);
+    if (!c.s)
+      goto done;
+    for (size_t i = 0; i < n; i++)
+      c.s[i] = 1.0 / sqrt(P->m[i]);
+    st = sym_from(P->K, c.s, &c.A);
+    if (st != MFS_OK)
+      goto done;
+    j.mode = 1;
+    j.bmat = 'I';
+    j.op = op_lumped;
+  } else {
+    st = sym_from(P->K, NULL, &c.A);
+    if (st != MFS_OK)
+      goto done;
+    chol_start(&ch);
+    st = chol_factor(&ch, P->M, NULL, NULL, 0.0, info);
+    if (st != MFS_OK)
+      goto done;
+    j.mode = 2;
+    j.bmat = 'G';
+    j.op = op_consistent;
+  }
+  st = arpack_run(&j, info);
+  if (st != MFS_OK)
+    goto done;
+  sym_free(&c.A); /* before the residual: give the memory back */
+  if (P->m) /* eigenvector of the pencil: M^-1/2 u, M-normalized as u is normalized */
+    for (size_t i = 0; i < n; i++)
+      z[i] *= c.s[i];
+  *lambda = d[0];
+  if (info)
+    info->residual = pair_residual(P, d[0], fabs(d[0]), z, c.t, w2);
+  if (v)
+    memcpy(v, z, n * sizeof *v);
+done:
+  chol_free(&ch);
+  sym_free(&c.A);
+  free(c.s);
+  free(c.t);
+  free(start);
+  free(z);
+  free(w2);
+  return st;
+}
+
+/* ------------------------------------------------------------------ */
+/* zero-energy modes: shift-invert with deflation                      */
+
+typedef struct {
+  const mfs_pencil *P;
+  chol_solver *ch;
+  size_t k;          /* deflated modes */
+  const double *Z;   /* k x n, M-orthonormal */
+  const double *MZ;  /* k x n: M Z */
+  double *b;         /* work, n */
+} si_ctx;
+
+/* x <- x - Z (W^T x), W = MZ or Z. */
+static void project(size_t n, size_t k, const double *Z, const double *W, double *x)
+{
+  for (size_t r = 0; r < k; r++) {
+    double a = dot(n, W + r * n, x);
+    const double *zr = Z + r * n;
+    for (size_t i = 0; i < n; i++)
+      x[i] -= a * zr[i];
+  }
+}
+
+/* Mode 3 on the deflated pencil, OP = P (K - sigma M)^-1 M P with the
+ * M-orthogonal projector P = I - Z Z^T M (M-self-adjoint, as OP is). */
+static int op_shift_invert(void *vc, int ido, double *x, double *y, const double *bx)
+{
+  si_ctx *c = vc;
+  size_t n = c->P->K->nrow;
+  if (ido == 2) {
+    mass_apply(c->P, x, y);
+    return MFS_OK;
+  }
+  if (ido == 1 && bx) {
+    memcpy(c->b, bx, n * sizeof *bx);
+  } else {
+    mass_apply(c->P, x, c->b);
+  }
+  /* M P x = M x - MZ (Z^T M x) */
+  project(n, c->k, c->MZ, c->Z, c->b);
+  int st = chol_solve(c->ch, c->b, y);
+  if (st != MFS_OK)
+    return st;
+  project(n, c->k, c->Z, c->MZ, y);
+  return MFS_OK;
+}
+
+/* Append v (M-normalized, then M-orthogonalized against Z twice) to Z. */
+static int append_mode(const mfs_pencil *P, size_t n, size_t *k, double *Z, double *MZ,
+                       const double *v)
+{
+  double *z = Z + *k * n, *mz = MZ + *k * n;
+  memcpy(z, v, n * sizeof *z);
+  for (int pass = 0; pass < 2; pass++)
+    project(n, *k, Z, MZ, z);
+  mass_apply(P, z, mz);
+  double nrm = sqrt(dot(n, z, mz));
+  if (!(nrm > 0.0) || !isfinite(nrm))
+    return MFS_EDOMAIN;
+  for (size_t i = 0; i < n; i++) {
+    z[i] /= nrm;
+    mz[i] /= nrm;
+  }
+  (*k)++;
+  return MFS_OK;
+}
+
+int mfs_eig_zero_modes(const mfs_pencil *P, double lambda_max, const mfs_zero_opts *zo,
+                       const mfs_eig_opts *opts, mfs_zero_modes *out, mfs_eig_info *info)
+{
+  info_reset(info);
+  memset(out, 0, sizeof *out);
+  int st = pencil_check(P);
+  if (st != MFS_OK)
+    return st;
+  if (!zo || !(zo->tol > 0.0) || !(lambda_max > 0.0) || !isfinite(lambda_max))
+    return MFS_EINVAL;
+  size_t n = P->K->nrow;
+  int nev_req = zo->nev > 0 ? zo->nev : 6;
+  size_t cap = zo->max_modes > 0 ? (size_t)zo->max_modes : 1024;
+  if (cap > n)
+    cap = n;
+  double thr = zo->tol * lambda_max;
+  out->sigma = -thr;
+  out->lambda_min_nonzero = INFINITY;
+
+  chol_solver ch = {0};
+  chol_start(&ch);
+  double *Z = NULL, *MZ = NULL, *start = NULL, *d = NULL, *zv = NULL, *w1 = NULL, *w2 = NULL;
+  si_ctx c = {P, &ch, 0, NULL, NULL, NULL};
+  st = MFS_ENOMEM;
+  Z = malloc(cap * n * sizeof *Z);
+  MZ = malloc(cap * n * sizeof *MZ);
+  start = malloc(n * sizeof *start);
+  c.b = malloc(n * sizeof *c.b);
+  w1 = malloc(n * sizeof *w1);
+  w2 = malloc(n * sizeof *w2);
+  if (!Z || !MZ || !start || !c.b || !w1 || !w2)
+    goto done;
+  c.Z = Z;
+  c.MZ = MZ;
+  /* K - sigma M = K + thr M: positive definite for K positive semidefinite */
+  st = chol_factor(&ch, P->K, P->M, P->m, thr, info);
+  if (st != MFS_OK)
+    goto done;
+  double resmax = 0.0;
+  for (;;) {
+    size_t rem = n - c.k;
+    if (rem <= 1) { /* the one eigenvalue left is lambda_max */
+      if (out->lambda_min_nonzero > lambda_max)
+        out->lambda_min_nonzero = lambda_max;
+      break;
+    }
+    int nev = nev_req < (int)(rem - 1) ? nev_req : (int)(rem - 1);
+    int ncv = default_ncv(opts, nev, n);
+    if (ncv <= nev)
+      ncv = nev + 1;
+    free(d);
+    free(zv);
+    d = malloc((size_t)nev * sizeof *d);
+    zv = malloc((size_t)nev * n * sizeof *zv);
+    st = MFS_ENOMEM;
+    if (!d || !zv)
+      goto done;
+    start_vector(n, start);
+    project(n, c.k, Z, MZ, start);
+    arpack_job j = {.n = (int)n,
+                    .mode = 3,
+                    .nev = nev,
+                    .ncv = ncv,
+                    .maxiter = opts && opts->maxiter > 0 ? opts->maxiter : 10000,
+                    .bmat = 'G',
+                    .which = "LM",
+                    .sigma = -thr,
+                    .tol = opts && opts->tol > 0.0 ? opts->tol : 0.0,
+                    .op = op_shift_invert,
+                    .ctx = &c,
+                    .start = start,
+                    .d = d,
+                    .z = zv};
+    st = arpack_run(&j, info);
+    if (st != MFS_OK)
+      goto done;
+    int found = 0;
+    for (int i = 0; i < nev; i++) {
+      double r = pair_residual(P, d[i], fabs(d[i]) > lambda_max ? fabs(d[i]) : lambda_max,
+                               zv + (size_t)i * n, w1, w2);
+      resmax = r > resmax ? r : resmax;
+      if (d[i] <= thr) {
+        if (c.k < cap) {
+          st = append_mode(P, n, &c.k, Z, MZ, zv + (size_t)i * n);
+          if (st != MFS_OK)
+            goto done;
+          found++;
+        }
+        out->lambda_zero_max = d[i] > out->lambda_zero_max ? d[i] : out->lambda_zero_max;
+      } else if (d[i] < out->lambda_min_nonzero) {
+        out->lambda_min_nonzero = d[i];
+      }
+    }
+    if (found == 0 || c.k >= cap)
+      break;
+    if (found == nev && nev_req < 256)
+      nev_req *= 2;
+  }
+  if (!isfinite(out->lambda_min_nonzero))
+    out->lambda_min_nonzero = lambda_max;
+  out->count = (int)c.k;
+  if (info)
+    info->residual = resmax;
+  if (zo->want_modes && c.k > 0) {
+    st = MFS_ENOMEM;
+    out->modes = malloc(c.k * n * sizeof *out->modes);
+    if (!out->modes)
+      goto done;
+    memcpy(out->modes, Z, c.k * n * sizeof *Z);
+  }
+  st = MFS_OK;
+done:
+  chol_free(&ch);
+  free(Z);
+  free(MZ);
+  free(start);
+  free(c.b);
+  free(d);
+  free(zv);
+  free(w1);
+  free(w2);
+  return st;
+}
+
+int mfs_eig_is_null(const mfs_pencil *P, const double *r, double lambda_max, double tol)
+{
+  size_t n = P->K->nrow;
+  double *a = malloc(n * sizeof *a), *b = malloc(n * sizeof *b);
+  int res = 0;
+  if (a && b) {
+    matvec(P->K, r, a);
+    mass_apply(P, r, b);
+    res = norm2(n, a) <= tol * lambda_max * norm2(n, b);
+  }
+  free(a);
+  free(b);
+  return res;
+}
+
+/* ------------------------------------------------------------------ */
+/* dense cross-check                                                   */
+
+int mfs_eig_dense(const mfs_pencil *P, double *w)
+{
+  int st = pencil_check(P);
+  if (st != MFS_OK)
+    return st;
+  size_t n = P->K->nrow;
+  if (n > MFS_EIG_DENSE_MAX)
+    return MFS_EINVAL;
+  double *A = calloc(n * n, sizeof *A), *B = calloc(n * n, sizeof *B);
+  st = MFS_ENOMEM;
+  if (!A || !B)
+    goto done;
+  for (size_t i = 0; i < n; i++)
+    for (size_t e = P->K->ptr[i]; e < P->K->ptr[i + 1]; e++)
+      A[i * n + (size_t)P->K->idx[e]] += P->K->val[e];
+  if (P->M) {
+    for (size_t i = 0; i < n; i++)
+      for (size_t e = P->M->ptr[i]; e < P->M->ptr[i + 1]; e++)
+        B[i * n + (size_t)P->M->idx[e]] += P->M->val[e];
+  } else {
+    for (size_t i = 0; i < n; i++)
+      B[i * n + i] = P->m[i];
+  }
+  lapack_int info = LAPACKE_dsygvd(LAPACK_ROW_MAJOR, 1, 'N', 'U', (lapack_int)n, A,
+                                   (lapack_int)n, B, (lapack_int)n, w);
+  if (info == 0)
+    st = MFS_OK;
+  else
+    st = info > (lapack_int)n ? MFS_EDOMAIN : MFS_ELAPACK;
+done:
+  free(A);
+  free(B);
+  return st;
+}

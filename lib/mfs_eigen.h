@@ -1,0 +1,130 @@
+/* Extreme eigenvalues of the pencil K v = lambda M v of a finite model
+ * (K symmetric positive semidefinite, M symmetric positive definite; lambda
+ * = omega^2, the squared circular frequencies of the undamped system).
+ *
+ *   mfs_eig_max         the largest eigenvalue, by ARPACK's implicitly
+ *                       restarted Lanczos method (dsaupd / dseupd):
+ *                       lumped mass: mode 1 (standard problem) on
+ *                         M^-1/2 K M^-1/2, which is symmetric (kept as its
+ *                         scaled upper triangle: each product reads half of
+ *                         K, the memory traffic that bounds a Lanczos step);
+ *                       consistent mass: mode 2 (generalized, OP = M^-1 K,
+ *                         B = M), the solves with M by a CHOLMOD Cholesky
+ *                         factorization.
+ *   mfs_eig_zero_modes  the smallest eigenvalues by shift-invert (ARPACK
+ *                       mode 3, OP = (K - sigma M)^-1 M) with a CHOLMOD
+ *                       factorization of K - sigma M, sigma = -tol lambda_max:
+ *                       slightly negative, so that K - sigma M is positive
+ *                       definite even when K has rigid-body or spurious
+ *                       zero-energy modes; counts the eigenvalues below
+ *                       tol * lambda_max.
+ *   mfs_eig_dense       all eigenvalues by LAPACK dsygvd, for n <= 2000: the
+ *                       cross-check of the tests.
+ *
+ * Why CHOLMOD.  Mode 2 needs M^-1 x and mode 3 needs (K - sigma M)^-1 x at
+ * every Lanczos step, so the matrix is factored once and each step is two
+ * triangular solves.  K and M of a meshfree model are sparse (tens to a
+ * hundred entries per row) with no banded structure worth exploiting in 2D,
+ * and symmetric positive definite after the shift: a sparse Cholesky with a
+ * fill-reducing ordering (AMD/METIS) is the method of choice, and CHOLMOD
+ * (SuiteSparse) is the standard, supernodal (BLAS-3) implementation of it:
+ * far faster than an iterative solve, which would have to be converged to
+ * near machine precision inside every Lanczos step for ARPACK to stay
+ * accurate, and than a dense or banded LAPACK factorization, which costs
+ * O(n^2) or O(n b^2) memory.  Its symbolic/numeric split (cholmod_analyze,
+ * cholmod_factorize) also fits the plan-then-execute style of the library.
+ *
+ * Reverse communication.  ARPACK's Fortran dsaupd_/dseupd_ (arpack-ng,
+ * 32-bit integers) are declared in mfs_eigen.c.  The start vector is a fixed
+ * pseudo-random vector, so results do not depend on earlier calls.  ARPACK
+ * and CHOLMOD are not thread-safe in this use: one call at a time. */
+#ifndef MFS_EIGEN_H
+#define MFS_EIGEN_H
+
+#include <stddef.h>
+
+#include "mfs_csr.h"
+
+/* The pencil (K, M).  Exactly one of M (consistent mass, CSR) and m
+ * (lumped mass: the diagonal, all entries > 0) is given.  Borrowed. */
+typedef struct {
+  const mfs_csr *K; /* n x n, symmetric; both triangles stored */
+  const mfs_csr *M; /* n x n, symmetric positive definite, or NULL */
+  const double *m;  /* n diagonal entries, or NULL */
+} mfs_pencil;
+
+/* Options of the ARPACK runs; zeros select the defaults. */
+typedef struct {
+  int ncv;      /* Lanczos vectors kept (default max(2 nev + 1, 20), at most n) */
+  int maxiter;  /* implicit restarts allowed (default 10000) */
+  double tol;   /* ARPACK's relative accuracy of the Ritz values (default: machine epsilon) */
+} mfs_eig_opts;
+
+/* What happened in the runs.  On an ARPACK failure `info` is ARPACK's own
+ * code and `routine` names the routine ("dsaupd", "dseupd"); on a CHOLMOD
+ * failure `routine` is "cholmod" and cholmod_status its status (e.g. 1 =
+ * CHOLMOD_NOT_POSDEF: the shifted matrix or M is not positive definite). */
+typedef struct {
+  int info;           /* ARPACK info of the failing call; 0 on success */
+  const char *routine;/* the failing routine, or "" */
+  int cholmod_status; /* CHOLMOD's status of the failing call; 0 if none */
+  int iterations;     /* Arnoldi update iterations (iparam(3)), summed over runs */
+  int matvecs;        /* operations OP x (iparam(9)), summed over runs */
+  int nconv;          /* converged Ritz values of the last run (iparam(5)) */
+  int runs;           /* ARPACK runs (zero modes: one per deflation round) */
+  double residual;    /* max ||K v - lambda M v||_2 / (lambda_ref ||M v||_2) over the
+                         returned pairs, lambda_ref = max(|lambda|, lambda_max) */
+} mfs_eig_info;
+
+/* Largest eigenvalue of K v = lambda M v.  v (length n, or NULL) receives
+ * its eigenvector, M-normalized.  Returns MFS_OK; MFS_EINVAL (n < 2, both or
+ * neither mass given, a lumped mass entry <= 0 or non-finite); MFS_ENOCONV
+ * (ARPACK stopped at maxiter: info->info = 1, info->nconv converged);
+ * MFS_EARPACK (other ARPACK error, code in info->info); MFS_EDOMAIN (M not
+ * positive definite: CHOLMOD status in info); MFS_ENOMEM.  info may be NULL. */
+int mfs_eig_max(const mfs_pencil *P, const mfs_eig_opts *opts, double *lambda, double *v,
+                mfs_eig_info *info);
+
+/* Zero-energy modes.  Counts the eigenvalues lambda <= tol * lambda_max
+ * (tol > 0, lambda_max > 0 the largest eigenvalue) by shift-invert ARPACK
+ * runs with explicit deflation: each run asks for the nev smallest
+ * eigenvalues (default 6) of the pencil restricted to the M-orthogonal
+ * complement of the zero modes found so far; the modes it finds below the
+ * threshold are added, and the rounds go on until a run finds none (so an
+ * exactly multiple zero eigenvalue, which a single Lanczos run may see only
+ * once, is counted fully).  At most max_modes zero modes are kept (the count
+ * is then a lower bound: *count == max_modes). */
+typedef struct {
+  int count;                /* eigenvalues <= tol * lambda_max */
+  double lambda_min_nonzero;/* the smallest eigenvalue above the threshold */
+  double lambda_zero_max;   /* the largest of the counted ones (0 if none) */
+  double sigma;             /* the shift used */
+  double *modes;            /* count x n zero modes, M-orthonormal (if want_modes) */
+} mfs_zero_modes;
+
+typedef struct {
+  double tol;       /* threshold relative to lambda_max (e.g. 1e-8) */
+  int nev;          /* eigenvalues per run (default 6) */
+  int max_modes;    /* cap on the count (default 1024) */
+  int want_modes;   /* keep the modes in out->modes (free with free()) */
+} mfs_zero_opts;
+
+int mfs_eig_zero_modes(const mfs_pencil *P, double lambda_max, const mfs_zero_opts *zopts,
+                       const mfs_eig_opts *opts, mfs_zero_modes *out, mfs_eig_info *info);
+
+/* Whether the field r (length n) is a zero-energy mode of the pencil:
+ * ||K r||_2 <= tol * lambda_max * ||M r||_2.  Used to recognize rigid-body
+ * modes (K times a rigid mode vanishes for shape functions that reproduce
+ * the rigid fields). */
+int mfs_eig_is_null(const mfs_pencil *P, const double *r, double lambda_max, double tol);
+
+/* The order of the largest problem mfs_eig_dense accepts. */
+#define MFS_EIG_DENSE_MAX 2000
+
+/* All n eigenvalues, ascending, into w (n), by LAPACKE_dsygvd on dense
+ * copies (O(n^2) memory, O(n^3) time).  MFS_EINVAL for n > MFS_EIG_DENSE_MAX
+ * or a bad pencil; MFS_EDOMAIN if M is not positive definite; MFS_ELAPACK;
+ * MFS_ENOMEM. */
+int mfs_eig_dense(const mfs_pencil *P, double *w);
+
+#endif

@@ -1,0 +1,110 @@
+/* Finite models: the assembled stiffness and mass of a bar or a rectangle
+ * discretized by particles, for eigenvalue analysis (paper 003 section 5).
+ *
+ *   1D bar        nx nodes on [0, lx], end nodes on the ends (dx = lx/(nx-1));
+ *                 periodic: nx nodes, dx = lx/nx
+ *   2D rectangle  nx x ny nodes of a square lattice on [0, lx] x [0, ly]
+ *                 (dx = lx/(nx-1), dy = ly/(ny-1)); periodic: dx = lx/nx, dy = ly/ny
+ *
+ * Any kernel, shape function and quadrature rule (mfs_quad.h; `gauss2` in 1D
+ * is two Gauss points per interval between nodes), lumped (row sum, eq. 131)
+ * or consistent (eq. 112) mass.  Physics: scalar (1D bar with modulus E, 2D
+ * anti-plane shear with shear modulus mu, eq. 113) or 2D plane strain (shear
+ * modulus mu and Poisson ratio nu).  Fixed particles (1D: the two ends, 2D:
+ * the whole boundary) have their degrees of freedom removed: K and M are the
+ * rows and columns of the free degrees of freedom.
+ *
+ * The model is built with the core machinery (mfs_lattice_alloc,
+ * mfs_quad_alloc, mfs_plan_alloc, mfs_assemble_*), and keeps the plan so
+ * that the element bound (mfs_bound.h) can reuse its shape table. */
+#ifndef MFS_MODEL_H
+#define MFS_MODEL_H
+
+#include <stddef.h>
+#include <stdio.h>
+
+#include "mfs_assemble.h"
+#include "mfs_csr.h"
+
+typedef enum {
+  MFS_FIX_NONE = 0,
+  MFS_FIX_ENDS,    /* 1D: the particles at x = 0 and x = lx */
+  MFS_FIX_BOUNDARY /* every particle on the boundary (1D: the ends) */
+} mfs_fix_kind;
+
+typedef struct {
+  int dim;                  /* 1 or 2 */
+  int nx, ny;               /* particles per direction (ny: 2D only) */
+  double lx, ly;            /* lengths of the domain (ly: 2D only) */
+  int periodic;             /* periodic box; then fixed must be MFS_FIX_NONE */
+  mfs_fix_kind fixed;       /* MFS_FIX_ENDS is 1D only */
+  const mfs_kernel_type *kernel;
+  const mfs_shape_type *shape;
+  double dilation;          /* D: support radius a = D dx */
+  const char *quadrature;   /* rule name, mfs_quad.h */
+  int consistent_mass;      /* 0: lumped (row sum, eq. 131) */
+  mfs_physics_kind physics; /* scalar (bar, anti-plane) or plane strain (2D) */
+  double modulus;           /* E (1D) or shear modulus mu (2D); > 0 */
+  double density;           /* rho; > 0 */
+  double poisson;           /* nu of plane strain, in (-1, 0.5) */
+  double rcond_min;         /* singular moment matrix threshold; 0 means 1e-12 */
+} mfs_model_spec;
+
+/* The defaults: 1D, 41 nodes on [0, 1], cubic kernel, MLS, D = 2, gauss2,
+ * lumped mass, free, E = rho = 1. */
+void mfs_model_spec_default(mfs_model_spec *s);
+
+/* MFS_OK, or MFS_EINVAL for a spec that cannot describe a model (bad
+ * dimension, fewer than 2 particles per direction, periodic and fixed,
+ * fixed `ends` in 2D, non-positive modulus, density or dilation, unknown or
+ * inapplicable quadrature, plane strain in 1D, no free degree of freedom),
+ * or MFS_ETOOSMALL for a periodic box not larger than two support radii
+ * (nx <= 2 D), where a particle would see itself through the box. */
+int mfs_model_spec_check(const mfs_model_spec *s);
+
+typedef struct {
+  mfs_model_spec spec;
+  mfs_particles *p;       /* the particles */
+  mfs_quad *q;            /* the quadrature points */
+  mfs_plan *pl;           /* shape table at the quadrature points */
+  mfs_material mat;
+  int ndof;               /* degrees of freedom per particle */
+  unsigned char *fixed;   /* p->n flags: 1 if the particle is fixed */
+  size_t n;               /* free degrees of freedom: the order of K and M */
+  size_t *dof;            /* n: the full degree of freedom (particle * ndof + component) */
+  mfs_csr *K;             /* stiffness on the free dofs, n x n, symmetric PSD; rows sorted */
+  mfs_csr *M;             /* consistent mass on the free dofs, or NULL when lumped */
+  double *m;              /* lumped mass on the free dofs (n), or NULL when consistent */
+  double dx, dy;          /* particle spacing */
+  double a;               /* support radius D dx */
+  double c;               /* wave speed sqrt(modulus / density): bar, or shear wave */
+} mfs_model;
+
+/* The particles and quadrature points of the model a spec describes,
+ * without shape functions or assembly.  MFS_OK, or the statuses of
+ * mfs_model_spec_check, MFS_ENOMEM; *p and *q are NULL on failure. */
+int mfs_model_geometry(const mfs_model_spec *spec, mfs_particles **p, mfs_quad **q);
+
+/* Build and assemble a model.  NULL on failure with *status: as
+ * mfs_model_spec_check, MFS_ESINGULAR (singular moment matrix at quadrature
+ * point *bad, if bad is not NULL), MFS_ENOMEM. */
+mfs_model *mfs_model_alloc(const mfs_model_spec *spec, int *status, size_t *bad);
+void mfs_model_free(mfs_model *m);
+
+/* Drop the plan (shape table) and quadrature set, which hold most of the
+ * memory of a large model, once the bound has been computed. */
+void mfs_model_release_plan(mfs_model *m);
+
+/* The rigid-body fields of the model that are admissible (satisfy the
+ * fixed conditions): none when particles are fixed; else the constant field
+ * (scalar), or the two translations and, unless periodic, the in-plane
+ * rotation about the centre (plane strain).  Returns their count (0 to 3)
+ * and, if r is not NULL, writes them as count vectors of length m->n,
+ * r[k * n + i]. */
+int mfs_model_rigid_fields(const mfs_model *m, double *r);
+
+/* Write K to fK and M (the lumped mass as a diagonal matrix) to fM in
+ * Matrix Market coordinate format; a NULL file is skipped.  MFS_OK, MFS_EIO. */
+int mfs_model_write_mtx(const mfs_model *m, FILE *fK, FILE *fM);
+
+#endif

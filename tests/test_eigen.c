@@ -1,0 +1,515 @@
+/* Finite models, ARPACK eigenvalues, zero-energy modes, element bounds and
+ * the Fourier estimate (lib/mfs_model, mfs_eigen, mfs_bound; paper 003
+ * section 5).  Independent paths are compared: ARPACK against LAPACK dense,
+ * the spectrum of periodic models against the Bloch symbol of
+ * lib/mfs_dispersion, the streaming bound against the table bound, and the
+ * linear finite element limit (D = 1) against its exact eigenvalues. */
+#include <complex.h>
+#undef I
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "check.h"
+#include "mfstab.h"
+
+static mfs_model_spec spec1(int n, double D, const char *quad)
+{
+  mfs_model_spec s;
+  mfs_model_spec_default(&s);
+  s.nx = n;
+  s.dilation = D;
+  s.quadrature = quad;
+  return s;
+}
+
+static mfs_model_spec spec2(int nx, int ny, double D, const char *quad)
+{
+  mfs_model_spec s = spec1(nx, D, quad);
+  s.dim = 2;
+  s.ny = ny;
+  s.lx = 1.137;
+  s.ly = 0.8725;
+  return s;
+}
+
+static mfs_model *build(const mfs_model_spec *s, const char *what)
+{
+  int st;
+  size_t bad = 0;
+  mfs_model *m = mfs_model_alloc(s, &st, &bad);
+  CHECK(m != NULL, "%s: model: %s (point %zu)", what, mfs_strerror(st), bad);
+  return m;
+}
+
+static int cmp_dbl(const void *a, const void *b)
+{
+  double x = *(const double *)a, y = *(const double *)b;
+  return (x > y) - (x < y);
+}
+
+/* Largest eigenvalue by ARPACK and by dense LAPACK; the element bound
+ * (table and streaming) against it. */
+static void check_max(const mfs_model_spec *s, const char *what)
+{
+  mfs_model *m = build(s, what);
+  if (!m)
+    return;
+  mfs_pencil P = {m->K, m->M, m->m};
+  double lam = 0.0, *w = malloc(m->n * sizeof *w);
+  mfs_eig_info info;
+  int st = mfs_eig_max(&P, NULL, &lam, NULL, &info);
+  CHECK(st == MFS_OK, "%s: mfs_eig_max: %s (info %d)", what, mfs_strerror(st), info.info);
+  st = mfs_eig_dense(&P, w);
+  CHECK(st == MFS_OK, "%s: mfs_eig_dense: %s", what, mfs_strerror(st));
+  double ref = w[m->n - 1];
+  CHECK_NEAR(lam / ref, 1.0, 1e-10, "%s: ARPACK lambda_max vs dense (n = %zu)", what, m->n);
+  CHECK(info.residual < 1e-10, "%s: residual %.3g", what, info.residual);
+  CHECK(w[0] > -1e-10 * ref, "%s: K not positive semidefinite: lambda_min %.3g", what, w[0]);
+
+  mfs_bound_result b, bs;
+  st = mfs_bound_of_model(m, &b);
+  CHECK(st == MFS_OK, "%s: bound: %s", what, mfs_strerror(st));
+  st = mfs_bound_model(s, &bs, NULL);
+  CHECK(st == MFS_OK, "%s: streaming bound: %s", what, mfs_strerror(st));
+  CHECK_NEAR(bs.lambda / b.lambda, 1.0, 1e-12, "%s: streaming vs table bound", what);
+  CHECK(bs.negative_phi == b.negative_phi && bs.points == b.points,
+        "%s: streaming vs table: negative phi %zu/%zu points %zu/%zu", what, bs.negative_phi,
+        b.negative_phi, bs.points, b.points);
+  CHECK(bs.evaluated <= b.evaluated, "%s: streaming evaluated %zu > %zu", what, bs.evaluated,
+        b.evaluated);
+  if (!s->consistent_mass && b.negative_phi == 0)
+    CHECK(b.lambda >= ref * (1.0 - 1e-12), "%s: bound %.10g below lambda_max %.10g", what,
+          b.lambda, ref);
+  free(w);
+  mfs_model_free(m);
+}
+
+static void test_arpack_vs_dense(void)
+{
+  mfs_model_spec s = spec1(41, 2.0, "gauss2");
+  check_max(&s, "1D free gauss2 cubic mls lumped");
+  s.consistent_mass = 1;
+  s.dilation = 2.5;
+  check_max(&s, "1D free gauss2 consistent D2.5");
+  s = spec1(100, 1.7, "gauss3");
+  s.kernel = &mfs_kernel_quartic;
+  s.fixed = MFS_FIX_ENDS;
+  s.modulus = 2.385;
+  s.density = 0.731;
+  s.lx = 3.21;
+  check_max(&s, "1D fixed quartic gauss3");
+  s = spec1(60, 2.3, "nodal");
+  s.periodic = 1;
+  check_max(&s, "1D periodic nodal");
+  s = spec1(50, 1.6, "stress");
+  s.shape = &mfs_shape_shepard;
+  s.consistent_mass = 1;
+  check_max(&s, "1D free stress shepard consistent");
+  s = spec1(80, 2.0, "nodal");
+  s.shape = &mfs_shape_sph;
+  s.periodic = 1;
+  check_max(&s, "1D periodic sph nodal");
+
+  s = spec2(14, 11, 2.0, "gauss2");
+  check_max(&s, "2D free gauss2 lumped");
+  s = spec2(12, 12, 1.8, "gauss2");
+  s.fixed = MFS_FIX_BOUNDARY;
+  s.consistent_mass = 1;
+  check_max(&s, "2D fixed consistent");
+  s = spec2(12, 10, 2.1, "stress-quad");
+  s.periodic = 1;
+  check_max(&s, "2D periodic stress-quad");
+  s = spec2(11, 9, 2.2, "stress-tri");
+  s.kernel = &mfs_kernel_quartic;
+  s.fixed = MFS_FIX_BOUNDARY;
+  check_max(&s, "2D fixed stress-tri quartic");
+  s = spec2(9, 8, 2.0, "gauss2");
+  s.physics = MFS_PHYS_PLANE_STRAIN;
+  s.poisson = 0.3;
+  check_max(&s, "2D plane strain free");
+  s = spec2(10, 9, 2.4, "stress-quad");
+  s.physics = MFS_PHYS_PLANE_STRAIN;
+  s.fixed = MFS_FIX_BOUNDARY;
+  s.consistent_mass = 1;
+  check_max(&s, "2D plane strain fixed consistent");
+  /* shape functions that read particle volumes (boundary volumes differ) */
+  s = spec2(12, 12, 2.2, "stress-star");
+  s.shape = &mfs_shape_rl;
+  s.fixed = MFS_FIX_BOUNDARY;
+  check_max(&s, "2D fixed stress-star rl");
+  s = spec2(12, 10, 2.0, "nodal");
+  s.shape = &mfs_shape_sph;
+  check_max(&s, "2D free nodal sph");
+  s = spec1(45, 2.0, "nodal");
+  s.shape = &mfs_shape_rl;
+  check_max(&s, "1D free nodal rl");
+  s = spec1(45, 2.5, "gauss2");
+  s.shape = &mfs_shape_kb;
+  s.kernel = &mfs_kernel_wendland2;
+  check_max(&s, "1D free gauss2 kb wendland2");
+}
+
+/* Spectrum of a periodic model = Bloch symbol at kappa = 2 pi m / (N dx). */
+static void check_bloch(const mfs_model_spec *s, const char *what)
+{
+  mfs_model *m = build(s, what);
+  if (!m)
+    return;
+  mfs_pencil P = {m->K, m->M, m->m};
+  size_t n = m->n;
+  double *w = malloc(n * sizeof *w), *b = malloc(n * sizeof *b);
+  int st = mfs_eig_dense(&P, w);
+  CHECK(st == MFS_OK, "%s: dense: %s", what, mfs_strerror(st));
+  mfs_disp_spec ds = {s->dim, s->dim == 1 ? MFS_LATTICE_LINE : MFS_LATTICE_SQUARE,
+                      s->dim == 1 ? 1.0 : m->dy / m->dx, s->quadrature, s->kernel, s->shape,
+                      s->dilation, MFS_FRAME_LAGRANGIAN, s->physics, s->poisson, 1.0,
+                      s->consistent_mass, 0.0};
+  mfs_disp_plan *pl = mfs_disp_plan_alloc(&ds, &st);
+  CHECK(pl != NULL, "%s: dispersion plan: %s", what, mfs_strerror(st));
+  if (!pl) {
+    free(w);
+    free(b);
+    mfs_model_free(m);
+    return;
+  }
+  int nb = mfs_disp_branches(pl);
+  double c2 = s->modulus / s->density, dx = m->dx;
+  size_t cnt = 0;
+  int ny = s->dim == 1 ? 1 : s->ny;
+  for (int my = 0; my < ny; my++)
+    for (int mx = 0; mx < s->nx; mx++) {
+      /* wave vector in 1/dx: 2 pi m / N per direction (dy = gamma dx) */
+      double k[2] = {2.0 * M_PI * mx / s->nx, s->dim == 1 ? 0.0 : 2.0 * M_PI * my / (ny * m->dy / dx)};
+      double complex K[16], M[16], o[4];
+      mfs_disp_symbols(pl, 0.0, k, K, M);
+      if (nb == 1) {
+        o[0] = K[0] / M[0];
+      } else {
+        double kap = hypot(k[0], k[1]) / M_PI, th = atan2(k[1], k[0]);
+        mfs_disp_omega2(pl, 0.0, kap, th, o);
+      }
+      for (int q = 0; q < nb && cnt < n; q++)
+        b[cnt++] = creal(o[q]) * c2 / (dx * dx);
+    }
+  CHECK(cnt == n, "%s: %zu Bloch values for %zu eigenvalues", what, cnt, n);
+  qsort(b, cnt, sizeof *b, cmp_dbl);
+  double worst = 0.0, scale = w[n - 1];
+  for (size_t i = 0; i < n && i < cnt; i++) {
+    double e = fabs(w[i] - b[i]) / scale;
+    worst = e > worst ? e : worst;
+  }
+  CHECK(worst < 1e-10, "%s: periodic spectrum vs Bloch symbol: worst relative %.3g", what, worst);
+  mfs_disp_plan_free(pl);
+  free(w);
+  free(b);
+  mfs_model_free(m);
+}
+
+static void test_bloch(void)
+{
+  mfs_model_spec s = spec1(24, 2.0, "nodal");
+  s.periodic = 1;
+  s.lx = 2.37;
+  check_bloch(&s, "1D periodic nodal");
+  s = spec1(30, 1.5, "stress");
+  s.periodic = 1;
+  check_bloch(&s, "1D periodic stress");
+  s = spec1(32, 2.6, "gauss2");
+  s.periodic = 1;
+  s.consistent_mass = 1;
+  s.kernel = &mfs_kernel_quartic;
+  s.modulus = 3.3;
+  check_bloch(&s, "1D periodic gauss2 consistent quartic");
+  s = spec2(10, 12, 2.0, "nodal");
+  s.periodic = 1;
+  s.lx = 1.0;
+  s.ly = 1.2;
+  check_bloch(&s, "2D periodic nodal");
+  s = spec2(10, 10, 1.8, "gauss2");
+  s.periodic = 1;
+  s.lx = s.ly = 1.0;
+  s.consistent_mass = 1;
+  check_bloch(&s, "2D periodic gauss2 consistent");
+}
+
+/* Zero-energy modes by shift-invert ARPACK against the dense count. */
+static void check_zero(const mfs_model_spec *s, int want, int want_rigid, const char *what)
+{
+  mfs_model *m = build(s, what);
+  if (!m)
+    return;
+  mfs_pencil P = {m->K, m->M, m->m};
+  double lam, tol = 1e-8;
+  mfs_eig_info info;
+  int st = mfs_eig_max(&P, NULL, &lam, NULL, &info);
+  CHECK(st == MFS_OK, "%s: max: %s", what, mfs_strerror(st));
+  mfs_zero_opts zo = {tol, 0, 0, 1};
+  mfs_zero_modes z;
+  st = mfs_eig_zero_modes(&P, lam, &zo, NULL, &z, &info);
+  CHECK(st == MFS_OK, "%s: zero modes: %s (info %d %s)", what, mfs_strerror(st), info.info,
+        info.routine);
+  double *w = malloc(m->n * sizeof *w);
+  mfs_eig_dense(&P, w);
+  int dense = 0;
+  for (size_t i = 0; i < m->n; i++)
+    dense += w[i] <= tol * lam;
+  CHECK(z.count == dense, "%s: %d zero modes, dense %d", what, z.count, dense);
+  if (want >= 0)
+    CHECK(z.count == want, "%s: %d zero modes, want %d", what, z.count, want);
+  if ((size_t)dense < m->n)
+    CHECK_NEAR(z.lambda_min_nonzero / w[dense], 1.0, 1e-9, "%s: lambda_min_nonzero", what);
+  CHECK(info.residual < 1e-8, "%s: residual %.3g", what, info.residual);
+  /* the modes are null vectors */
+  for (int k = 0; k < z.count; k++)
+    CHECK(mfs_eig_is_null(&P, z.modes + (size_t)k * m->n, lam, 10 * tol), "%s: mode %d not null",
+          what, k);
+  int nr = mfs_model_rigid_fields(m, NULL), rigid = 0;
+  double *r = nr ? malloc((size_t)nr * m->n * sizeof *r) : NULL;
+  mfs_model_rigid_fields(m, r);
+  for (int k = 0; k < nr; k++)
+    rigid += mfs_eig_is_null(&P, r + (size_t)k * m->n, lam, tol);
+  CHECK(rigid == want_rigid, "%s: %d rigid modes, want %d", what, rigid, want_rigid);
+  free(r);
+  free(w);
+  free(z.modes);
+  mfs_model_free(m);
+}
+
+static void test_zero_modes(void)
+{
+  mfs_model_spec s = spec1(40, 2.0, "nodal");
+  s.periodic = 1;
+  check_zero(&s, 2, 1, "1D periodic nodal N even: rigid + sawtooth");
+  s.nx = 41;
+  check_zero(&s, 1, 1, "1D periodic nodal N odd");
+  s = spec1(40, 2.0, "stress");
+  s.periodic = 1;
+  check_zero(&s, 1, 1, "1D periodic stress points");
+  s = spec1(41, 2.0, "gauss2");
+  check_zero(&s, 1, 1, "1D free gauss2");
+  s.fixed = MFS_FIX_ENDS;
+  check_zero(&s, 0, 0, "1D fixed gauss2");
+  s = spec1(30, 2.0, "nodal");
+  s.periodic = 1;
+  s.consistent_mass = 1;
+  check_zero(&s, 2, 1, "1D periodic nodal consistent");
+  s = spec2(10, 10, 2.0, "nodal");
+  s.periodic = 1;
+  check_zero(&s, 4, 1, "2D periodic nodal: rigid + 3 spurious");
+  s = spec2(10, 9, 2.0, "gauss2");
+  check_zero(&s, 1, 1, "2D free gauss2");
+  s = spec2(8, 8, 2.0, "gauss2");
+  s.physics = MFS_PHYS_PLANE_STRAIN;
+  check_zero(&s, 3, 3, "2D plane strain free gauss2: 2 translations + rotation");
+
+  /* the sawtooth (-1)^I is in the null space of periodic nodal integration */
+  s = spec1(40, 2.0, "nodal");
+  s.periodic = 1;
+  mfs_model *m = build(&s, "sawtooth");
+  if (m) {
+    double *x = malloc(m->n * sizeof *x), *y = malloc(m->n * sizeof *y), ky = 0.0, kmax = 0.0;
+    for (size_t i = 0; i < m->n; i++)
+      x[i] = (i & 1) ? -1.0 : 1.0;
+    mfs_csr_matvec(m->K, x, y);
+    for (size_t i = 0; i < m->n; i++)
+      ky = fabs(y[i]) > ky ? fabs(y[i]) : ky;
+    mfs_csr_asymmetry(m->K, &kmax);
+    CHECK(ky < 1e-13 * kmax, "K times the sawtooth: %.3g (K max %.3g)", ky, kmax);
+    free(x);
+    free(y);
+    mfs_model_free(m);
+  }
+}
+
+/* The 1D EFG bar of Fig. 17 (41 nodes on [0, 1], E = rho = 1, free-free,
+ * cubic MLS, gauss2).  At D = 1 the MLS functions are the linear finite
+ * element hats: lambda_max dx^2 = 4 (lumped) and 12 (consistent), the
+ * sawtooth mode; eq. 138. */
+static void test_fig17(void)
+{
+  for (int cons = 0; cons < 2; cons++) {
+    mfs_model_spec s = spec1(41, 1.0, "gauss2");
+    s.consistent_mass = cons;
+    mfs_model *m = build(&s, "fig17 D = 1");
+    if (!m)
+      continue;
+    mfs_pencil P = {m->K, m->M, m->m};
+    double lam;
+    int st = mfs_eig_max(&P, NULL, &lam, NULL, NULL);
+    CHECK(st == MFS_OK, "fig17 D = 1: %s", mfs_strerror(st));
+    CHECK_NEAR(lam * m->dx * m->dx, cons ? 12.0 : 4.0, 1e-10, "fig17 D = 1 %s",
+               cons ? "consistent" : "lumped");
+    mfs_model_free(m);
+  }
+  for (int i = 0; i <= 12; i++) {
+    double D = 1.0 + 0.25 * i;
+    mfs_model_spec s = spec1(41, D, "gauss2");
+    mfs_model *m = build(&s, "fig17");
+    if (!m)
+      continue;
+    mfs_pencil P = {m->K, m->M, m->m};
+    double lam;
+    int st = mfs_eig_max(&P, NULL, &lam, NULL, NULL);
+    CHECK(st == MFS_OK, "fig17 D = %g: %s", D, mfs_strerror(st));
+    mfs_bound_result b;
+    mfs_bound_of_model(m, &b);
+    CHECK(b.lambda >= lam, "fig17 D = %g: bound %.10g < lambda_max %.10g", D, b.lambda, lam);
+    mfs_model_free(m);
+  }
+  /* at D = 1 the bound is the linear element's lambda^Q = 1/(dx^2 t (1 - t)) = 6/dx^2
+   * at the Gauss points t = 1/2 -+ 1/(2 sqrt 3) */
+  mfs_model_spec s = spec1(41, 1.0, "gauss2");
+  mfs_bound_result b;
+  mfs_bound_model(&s, &b, NULL);
+  CHECK_NEAR(b.lambda * (1.0 / 40) * (1.0 / 40), 6.0, 1e-10, "linear element bound");
+  CHECK(b.negative_phi == 0, "linear element: %zu negative phi points", b.negative_phi);
+}
+
+/* Where some MLS phi_I < 0 the output says so. */
+static void test_negative_phi(void)
+{
+  mfs_model_spec s = spec1(41, 1.25, "gauss2");
+  mfs_bound_result b;
+  int st = mfs_bound_model(&s, &b, NULL);
+  CHECK(st == MFS_OK && b.negative_phi > 0, "D = 1.25: negative phi points %zu", b.negative_phi);
+  /* on a periodic lattice the interior MLS functions at D = 2 are positive */
+  s = spec1(40, 2.0, "gauss2");
+  s.periodic = 1;
+  st = mfs_bound_model(&s, &b, NULL);
+  CHECK(st == MFS_OK && b.negative_phi == 0, "periodic D = 2: negative phi %zu", b.negative_phi);
+  CHECK(b.evaluated == 2, "periodic gauss2: %zu distinct points evaluated, want 2", b.evaluated);
+}
+
+/* The constants of eqs 136 and 145 and the Fourier estimate. */
+static void test_closed_forms(void)
+{
+  double al = mfs_bound_alpha(&mfs_kernel_cubic, 1);
+  CHECK_NEAR(al, 12.42, 0.005, "alpha of eq. 136");
+  CHECK_NEAR(al / 48.0, 0.2587, 0.00005, "0.2587 of eq. 136");
+  CHECK_NEAR(mfs_bound_alpha(&mfs_kernel_cubic, 2), 13.30, 0.1, "alpha_1 of eq. 145");
+  CHECK_NEAR(mfs_bound_alpha_continuum(&mfs_kernel_cubic, 1), 12.4629, 0.001,
+             "continuum limit of the interior lambda^Q (1D cubic)");
+  /* the interior lambda^Q of a fine periodic lattice tends to the continuum value */
+  mfs_model_spec s = spec1(400, 12.0, "gauss1");
+  s.periodic = 1;
+  s.shape = &mfs_shape_sph;
+  mfs_bound_result b;
+  mfs_bound_model(&s, &b, NULL);
+  double h = 12.0 / 400;
+  CHECK_NEAR(b.lambda * h * h, mfs_bound_alpha_continuum(&mfs_kernel_cubic, 1), 0.05,
+             "interior lambda^Q h^2 at D = 12");
+  CHECK_NEAR(mfs_dt_crit(4.0), 1.0, 1e-15, "dt = 2/omega");
+
+  /* Fourier: D = 1 gauss2 lumped is the linear element, omega^2 dx^2/c^2 = 4 sin^2(k dx/2) */
+  s = spec1(41, 1.0, "gauss2");
+  s.modulus = 2.385;
+  s.density = 0.7;
+  double lf, kf;
+  int st = mfs_bound_fourier(&s, 101, 1, &lf, &kf, NULL);
+  CHECK(st == MFS_OK, "fourier: %s", mfs_strerror(st));
+  CHECK_NEAR(lf * (1.0 / 40) * (1.0 / 40) * 0.7 / 2.385, 4.0, 1e-10, "Fourier max, linear element");
+  CHECK_NEAR(kf, 1.0, 1e-6, "Fourier max at kappa = 1");
+  /* Table II: nodal integration 1.0 at D = 1.5 */
+  s = spec1(41, 1.5, "nodal");
+  st = mfs_bound_fourier(&s, 201, 1, &lf, NULL, NULL);
+  CHECK_NEAR(lf / 1600.0, 1.0, 1e-6, "Table II nodal integration");
+  /* the periodic model with N even samples kappa = 1: its lambda_max is the Fourier max */
+  s = spec1(40, 2.0, "stress");
+  s.periodic = 1;
+  mfs_model *m = build(&s, "periodic stress");
+  if (m) {
+    mfs_pencil P = {m->K, m->M, m->m};
+    double lam;
+    mfs_eig_max(&P, NULL, &lam, NULL, NULL);
+    st = mfs_bound_fourier(&s, 201, 1, &lf, &kf, NULL);
+    CHECK(lf >= lam * (1.0 - 1e-12), "Fourier %.12g below periodic lambda_max %.12g", lf, lam);
+    CHECK_NEAR(lf / lam, 1.0, 1e-2, "Fourier vs periodic lambda_max (max at kappa %g)", kf);
+    mfs_model_free(m);
+  }
+  s = spec2(10, 10, 2.0, "gauss2");
+  st = mfs_bound_fourier(&s, 51, 7, &lf, NULL, NULL);
+  CHECK(st == MFS_OK && lf > 0.0, "2D Fourier: %s", mfs_strerror(st));
+}
+
+/* Error returns. */
+static void test_errors(void)
+{
+  mfs_model_spec s = spec1(20, 2.0, "gauss2");
+  s.periodic = 1;
+  s.fixed = MFS_FIX_ENDS;
+  CHECK(mfs_model_spec_check(&s) == MFS_EINVAL, "periodic and fixed");
+  s = spec1(4, 2.0, "gauss2");
+  s.periodic = 1;
+  CHECK(mfs_model_spec_check(&s) == MFS_ETOOSMALL, "periodic box of 4 nodes at D = 2");
+  int st;
+  CHECK(mfs_model_alloc(&s, &st, NULL) == NULL && st == MFS_ETOOSMALL, "alloc too small");
+  s = spec1(20, 2.0, "gauss2");
+  s.modulus = -1.0;
+  CHECK(mfs_model_spec_check(&s) == MFS_EINVAL, "negative modulus");
+  s = spec1(20, 2.0, "stress-quad");
+  CHECK(mfs_model_spec_check(&s) == MFS_EINVAL, "2D rule in 1D");
+  s = spec2(10, 10, 2.0, "gauss2");
+  s.fixed = MFS_FIX_ENDS;
+  CHECK(mfs_model_spec_check(&s) == MFS_EINVAL, "ends in 2D");
+  s = spec1(20, 0.5, "gauss2");
+  size_t bad = 99;
+  CHECK(mfs_model_alloc(&s, &st, &bad) == NULL && st == MFS_ESINGULAR, "D = 0.5: %s",
+        mfs_strerror(st));
+  mfs_bound_result b;
+  CHECK(mfs_bound_model(&s, &b, &bad) == MFS_ESINGULAR, "streaming bound D = 0.5");
+
+  s = spec1(200, 2.0, "gauss2");
+  mfs_model *m = build(&s, "errors");
+  if (!m)
+    return;
+  mfs_pencil P = {m->K, m->M, m->m};
+  double lam;
+  mfs_eig_info info;
+  mfs_pencil bad1 = {m->K, NULL, NULL};
+  CHECK(mfs_eig_max(&bad1, NULL, &lam, NULL, &info) == MFS_EINVAL, "no mass");
+  m->m[3] = -1.0;
+  CHECK(mfs_eig_max(&P, NULL, &lam, NULL, &info) == MFS_EINVAL, "negative lumped mass");
+  m->m[3] = 1.0 / 199;
+  mfs_eig_opts o = {3, 1, 1e-15};
+  st = mfs_eig_max(&P, &o, &lam, NULL, &info);
+  CHECK(st == MFS_ENOCONV && info.info == 1 && strcmp(info.routine, "dsaupd") == 0,
+        "maxiter 1: %s, info %d", mfs_strerror(st), info.info);
+  /* consistent "mass" that is not positive definite: CHOLMOD reports it */
+  mfs_csr *N = mfs_csr_alloc(m->n, m->n, m->n);
+  for (size_t i = 0; i < m->n; i++) {
+    N->idx[i] = (int)i;
+    N->val[i] = i == 7 ? -1.0 : 1.0;
+    N->ptr[i + 1] = i + 1;
+  }
+  mfs_pencil Pn = {m->K, N, NULL};
+  st = mfs_eig_max(&Pn, NULL, &lam, NULL, &info);
+  CHECK(st == MFS_EDOMAIN && strcmp(info.routine, "cholmod") == 0 && info.cholmod_status != 0,
+        "indefinite M: %s %s %d", mfs_strerror(st), info.routine, info.cholmod_status);
+  mfs_zero_opts zo = {0.0, 0, 0, 0};
+  mfs_zero_modes z;
+  CHECK(mfs_eig_zero_modes(&P, 1.0, &zo, NULL, &z, &info) == MFS_EINVAL, "tol 0");
+  mfs_csr_free(N);
+  mfs_model_free(m);
+  s = spec1(2100, 2.0, "gauss2");
+  m = build(&s, "dense too large");
+  if (m) {
+    mfs_pencil Pl = {m->K, m->M, m->m};
+    double *w = malloc(m->n * sizeof *w);
+    CHECK(mfs_eig_dense(&Pl, w) == MFS_EINVAL, "dense n > 2000");
+    free(w);
+    mfs_model_free(m);
+  }
+}
+
+int main(void)
+{
+  test_arpack_vs_dense();
+  test_bloch();
+  test_zero_modes();
+  test_fig17();
+  test_negative_phi();
+  test_closed_forms();
+  test_errors();
+  return check_summary("test_eigen");
+}

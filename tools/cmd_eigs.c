@@ -1,0 +1,558 @@
+/* mfstab eigs: extreme eigenvalues, zero-energy modes and critical time
+ * steps of a finite particle model (paper 003 section 5), side by side with
+ * the element bound, the closed form and the Fourier estimate; and the
+ * options shared with `mfstab bound`, and the data of Figs 17 and 18. */
+#include <errno.h>
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "cli.h"
+#include "commands.h"
+#include "eigs_figures.h"
+
+static const char help[] =
+  "usage: mfstab eigs [options] [-o FILE]\n"
+  "Largest eigenvalue lambda_max = omega_max^2 of K v = lambda M v of a finite model (ARPACK;\n"
+  "lumped mass: symmetric standard problem M^-1/2 K M^-1/2; consistent mass: generalized mode,\n"
+  "CHOLMOD solves with M), with --zero-modes the zero-energy modes (shift-invert ARPACK about\n"
+  "sigma = -tol lambda_max), and the critical time step of the undamped central difference\n"
+  "method dt = 2/omega_max (paper 003 eqs 120, 124) from:\n"
+  "  dt_crit      the exact lambda_max\n"
+  "  dt_bound     the element bound max_Q lambda^Q (eqs 123-133, 139-144; lumped mass, phi_I > 0)\n"
+  "  dt_alpha     the closed form alpha c^2/h^2 (eq. 136 1D, eq. 146 2D; h = a = D dx)\n"
+  "  dt_fourier   the largest omega^2 of plane waves on the infinite uniform lattice\n"
+  "  dt_rule_p    the rule of thumb 0.3 h/c with the SPH smoothing length h = a/2 and the\n"
+  "               P-wave speed (1D: bar speed sqrt(E/rho); 2D: sqrt((lambda+2mu)/rho))\n"
+  "  dt_rule_bulk the same with the bulk speed sqrt(K/rho), K = E/(3(1-2 nu))\n"
+  "Models: 1D bar of N nodes on [0, L] (end nodes on the ends), 2D rectangle of NX x NY nodes\n"
+  "on [0, LX] x [0, LY] (square lattice, 2D anti-plane shear or plane strain); periodic:\n"
+  "dx = L/N.  The modulus is E in 1D and the shear modulus mu in 2D; c = sqrt(modulus/rho).\n"
+  "CSV (one row): dim,nodes_x,nodes_y,length_x,length_y,dx,dy,kernel,shape,quadrature,mass,\n"
+  "  dilation,support_radius,fixed,periodic,physics,modulus,density,poisson,wave_speed,dofs,\n"
+  "  lambda_max,omega_max,bound,bound_valid,negative_phi_points,bound_alpha,alpha,\n"
+  "  lambda_fourier,kappa_fourier,theta_fourier,dt_crit,dt_bound,dt_alpha,dt_fourier,dt_rule_p,\n"
+  "  dt_rule_bulk,bound_ratio,arpack_iterations,arpack_matvecs,arpack_residual\n"
+  "  and with --zero-modes: zero_tol,zero_modes,rigid_modes,spurious_modes,lambda_min_nonzero,\n"
+  "  zero_runs\n"
+  "bound_valid is 1 when the element bound is a proven bound: lumped mass and every phi_I > 0 at\n"
+  "the quadrature points (negative_phi_points counts the points where some phi_I <= 0).\n"
+  "bound_ratio = bound / lambda_max.  rigid_modes counts the rigid fields (constant; plane strain:\n"
+  "translations and rotation) that are null vectors of K; spurious_modes the other zero modes.\n"
+  "options:\n"
+  "%s"
+  "  (--lattice is line or square; --spacing and --gamma follow from --nodes and --length)\n"
+  "  --nodes N | NX,NY       nodes (default 41 in 1D, 21,21 in 2D; N alone in 2D: N x N)\n"
+  "  --length L | LX,LY      domain size (default 1, 1 x 1)\n"
+  "  --fixed none|ends|boundary   remove the dofs of the end (1D) or boundary (2D) nodes\n"
+  "  --periodic              periodic model (dx = L/N); excludes --fixed\n"
+  "  --physics antiplane|plane-strain   2D physics (default antiplane)\n"
+  "  --poisson NU            Poisson ratio for plane strain and the rules of thumb (0.25)\n"
+  "  --zero-modes            count the zero-energy modes (eigenvalues <= tol lambda_max)\n"
+  "  --tol T                 zero-mode threshold relative to lambda_max (default 1e-8)\n"
+  "  --nev K                 eigenvalues per shift-invert run (default 6)\n"
+  "  --ncv K --maxiter K --arpack-tol T   ARPACK controls (defaults 20, 10000, 1e-12)\n"
+  "  --fourier-points K --fourier-angles K   sampling of the Fourier maximum (201, 7)\n"
+  "  --export-mtx PREFIX     write K and M to PREFIX_K.mtx, PREFIX_M.mtx (Matrix Market)\n"
+  "  -o FILE                 output file (default: standard output)\n";
+
+/* ------------------------------------------------------------------ */
+/* shared options                                                      */
+
+static int parse_int(const char *s, long *v)
+{
+  char *end;
+  errno = 0;
+  *v = strtol(s, &end, 10);
+  return end != s && *end == '\0' && errno == 0;
+}
+
+/* "N" or "NX,NY": returns the count of numbers (1 or 2), or dies. */
+static int parse_nodes(const char *val, long *nx, long *ny)
+{
+  const char *comma = strchr(val, ',');
+  char a[64], b[64];
+  int k = 1;
+  if (strlen(val) >= sizeof a)
+    goto bad;
+  if (comma) {
+    if (strchr(comma + 1, ','))
+      goto bad;
+    size_t la = (size_t)(comma - val);
+    memcpy(a, val, la);
+    a[la] = '\0';
+    strcpy(b, comma + 1);
+    k = 2;
+  } else {
+    strcpy(a, val);
+  }
+  if (!parse_int(a, nx) || (k == 2 && !parse_int(b, ny)))
+    goto bad;
+  if (k == 1)
+    *ny = *nx;
+  if (*nx < 2 || *ny < 2 || *nx > 100000000L || *ny > 100000000L)
+    cli_die(2, "--nodes %s: out of range; every count must be 2 to 100000000", val);
+  return k;
+bad:
+  cli_die(2, "--nodes '%s': expected N (1D) or NX,NY (2D) with integers >= 2", val);
+}
+
+void eigs_parse(int argc, char **argv, const char *helptext, int is_eigs, eigs_opts *o)
+{
+  memset(o, 0, sizeof *o);
+  cli_disc_defaults(&o->d);
+  o->tol = 1e-8;
+  o->poisson = 0.25;
+  o->arpack_tol = 1e-12;
+  o->fourier_points = 201;
+  o->fourier_angles = 7;
+  o->fixed = "none";
+  static const char *const flags_eigs[] = {"--periodic", "--zero-modes", NULL};
+  static const char *const flags_bound[] = {"--periodic", "--zero-modes", NULL};
+  const char *opt, *val;
+  opt_iter it;
+  opt_init(&it, argc, argv, helptext, is_eigs ? flags_eigs : flags_bound);
+  while (opt_next(&it, &opt, &val)) {
+    if (!opt)
+      opt_unknown(opt);
+    if (strcmp(opt, "--spacing") == 0 || strcmp(opt, "--gamma") == 0)
+      cli_die(2, "%s: not an option of a finite model; the spacing follows from --nodes and --length",
+              opt);
+    if (strcmp(opt, "--lattice") == 0 && strcmp(val, "line") && strcmp(val, "square"))
+      cli_die(2, "--lattice '%s': finite models are built on lattices line (1D) and square (2D)",
+              val);
+    if (cli_disc_option(&o->d, opt, val))
+      continue;
+    if (strcmp(opt, "--nodes") == 0) {
+      o->nodes = val;
+    } else if (strcmp(opt, "--length") == 0) {
+      o->length = val;
+    } else if (strcmp(opt, "--fixed") == 0) {
+      if (strcmp(val, "none") && strcmp(val, "ends") && strcmp(val, "boundary"))
+        cli_die(2, "--fixed '%s': allowed: none, ends (1D), boundary", val);
+      o->fixed = val;
+    } else if (strcmp(opt, "--periodic") == 0) {
+      o->periodic = 1;
+    } else if (strcmp(opt, "--physics") == 0) {
+      if (strcmp(val, "antiplane") == 0)
+        o->plane_strain = 0;
+      else if (strcmp(val, "plane-strain") == 0)
+        o->plane_strain = 1;
+      else
+        cli_die(2, "--physics '%s': allowed: antiplane, plane-strain", val);
+    } else if (strcmp(opt, "--poisson") == 0) {
+      o->poisson = cli_double(opt, val);
+      if (!(o->poisson > -1.0 && o->poisson < 0.5))
+        cli_die(2, "--poisson %s: must be in (-1, 0.5)", val);
+    } else if (strcmp(opt, "--fourier-points") == 0) {
+      o->fourier_points = (int)cli_long(opt, val, 2, 100000);
+    } else if (strcmp(opt, "--fourier-angles") == 0) {
+      o->fourier_angles = (int)cli_long(opt, val, 1, 1000);
+    } else if (strcmp(opt, "-o") == 0) {
+      o->outpath = val;
+    } else if (is_eigs && strcmp(opt, "--zero-modes") == 0) {
+      o->zero_modes = 1;
+    } else if (is_eigs && strcmp(opt, "--tol") == 0) {
+      o->tol = cli_double(opt, val);
+      if (!(o->tol > 0.0 && o->tol < 1.0))
+        cli_die(2, "--tol %s: must be in (0, 1)", val);
+    } else if (is_eigs && strcmp(opt, "--nev") == 0) {
+      o->nev = (int)cli_long(opt, val, 1, 1000);
+    } else if (is_eigs && strcmp(opt, "--ncv") == 0) {
+      o->ncv = (int)cli_long(opt, val, 3, 100000);
+    } else if (is_eigs && strcmp(opt, "--maxiter") == 0) {
+      o->maxiter = (int)cli_long(opt, val, 1, 100000000);
+    } else if (is_eigs && strcmp(opt, "--arpack-tol") == 0) {
+      o->arpack_tol = cli_double(opt, val);
+      if (!(o->arpack_tol >= 0.0 && o->arpack_tol < 1.0))
+        cli_die(2, "--arpack-tol %s: must be in [0, 1) (0: machine precision)", val);
+    } else if (is_eigs && strcmp(opt, "--export-mtx") == 0) {
+      if (!*val)
+        cli_die(2, "--export-mtx '': expected a file name prefix");
+      o->export_prefix = val;
+    } else {
+      opt_unknown(opt);
+    }
+  }
+
+  /* cross-option checks, now that the dimension is known */
+  cli_disc *d = &o->d;
+  mfs_lattice_kind lat;
+  mfs_quad_rule rule;
+  cli_disc_finish(d, &lat, &rule);
+  int dim = d->dim;
+  long nx = dim == 1 ? 41 : 21, ny = dim == 1 ? 1 : 21;
+  if (o->nodes) {
+    int k = parse_nodes(o->nodes, &nx, &ny);
+    if (k == 2 && dim == 1)
+      cli_die(2, "--nodes %s: two counts need --dim 2; in 1D give N", o->nodes);
+    if (dim == 1)
+      ny = 1;
+  }
+  if ((double)nx * (double)ny > 1e8)
+    cli_die(2, "--nodes %s: more than 10^8 nodes", o->nodes);
+  double lx = 1.0, ly = dim == 1 ? 0.0 : 1.0;
+  if (o->length) {
+    double *L;
+    size_t k = cli_double_list("--length", o->length, &L);
+    if (k > (size_t)dim)
+      cli_die(2, "--length %s: %zu lengths for --dim %d", o->length, k, dim);
+    for (size_t i = 0; i < k; i++)
+      if (!(L[i] > 0.0))
+        cli_die(2, "--length %s: lengths must be > 0", o->length);
+    lx = L[0];
+    if (dim == 2)
+      ly = k == 2 ? L[1] : L[0];
+    free(L);
+  }
+  mfs_fix_kind fx = strcmp(o->fixed, "none") == 0 ? MFS_FIX_NONE
+                    : strcmp(o->fixed, "ends") == 0 ? MFS_FIX_ENDS
+                                                    : MFS_FIX_BOUNDARY;
+  if (o->periodic && fx != MFS_FIX_NONE)
+    cli_die(2, "--periodic with --fixed %s: a periodic model has no boundary; use --fixed none",
+            o->fixed);
+  if (dim == 2 && fx == MFS_FIX_ENDS)
+    cli_die(2, "--fixed ends: a 2D model fixes its boundary; with --dim 2 allowed: none, boundary");
+  if (fx != MFS_FIX_NONE && (nx < 3 || (dim == 2 && ny < 3)))
+    cli_die(2, "--fixed %s: needs at least 3 nodes per direction (--nodes %s)", o->fixed,
+            o->nodes ? o->nodes : "default");
+  if (o->plane_strain && dim != 2)
+    cli_die(2, "--physics plane-strain needs --dim 2");
+  /* too few nodes for the dilation */
+  double dx = o->periodic ? lx / nx : lx / (nx - 1);
+  double dy = dim == 1 ? dx : (o->periodic ? ly / ny : ly / (ny - 1));
+  double a = d->dilation * dx;
+  if (o->periodic) {
+    if (!(nx * dx > 2.0 * a) || (dim == 2 && !(ny * dy > 2.0 * a)))
+      cli_die(2,
+              "--nodes %s: too few for --dilation %g in a periodic model: the box must be longer "
+              "than two support radii (2 D = %g spacings)",
+              o->nodes ? o->nodes : "default", d->dilation, 2.0 * d->dilation);
+  } else if ((nx - 1) * dx < a * (1.0 - 1e-12) || (dim == 2 && (ny - 1) * dy < a * (1.0 - 1e-12))) {
+    cli_die(2,
+            "--nodes %s: too few for --dilation %g: the support radius a = %g exceeds the model; "
+            "use at least %d nodes per direction",
+            o->nodes ? o->nodes : "default", d->dilation, a, (int)ceil(d->dilation) + 1);
+  }
+  mfs_model_spec *s = &o->s;
+  mfs_model_spec_default(s);
+  s->dim = dim;
+  s->nx = (int)nx;
+  s->ny = (int)ny;
+  s->lx = lx;
+  s->ly = dim == 2 ? ly : 1.0;
+  s->periodic = o->periodic;
+  s->fixed = fx;
+  s->kernel = d->kernel;
+  s->shape = d->shape;
+  s->dilation = d->dilation;
+  s->quadrature = d->quadrature;
+  s->consistent_mass = d->consistent_mass;
+  s->physics = o->plane_strain ? MFS_PHYS_PLANE_STRAIN : MFS_PHYS_SCALAR;
+  s->modulus = d->modulus;
+  s->density = d->density;
+  s->poisson = o->poisson;
+  int st = mfs_model_spec_check(s);
+  if (st == MFS_ETOOSMALL)
+    cli_die(2, "--nodes %s: too few for --dilation %g", o->nodes ? o->nodes : "default",
+            d->dilation);
+  if (st != MFS_OK) {
+    if (rule.kind == MFS_QK_VORONOI && o->periodic)
+      cli_die(2, "--quadrature stress-star --periodic: needs even node counts (--nodes %s)",
+              o->nodes ? o->nodes : "default");
+    cli_die(2, "invalid combination of options (see 'mfstab %s --help')", cli_command);
+  }
+}
+
+void eigs_derive(const eigs_opts *o, eigs_derived *dv)
+{
+  const mfs_model_spec *s = &o->s;
+  double nu = o->poisson, rho = s->density, mu = s->modulus;
+  double E = s->dim == 1 ? s->modulus : 2.0 * mu * (1.0 + nu);
+  double lam = 2.0 * mu * nu / (1.0 - 2.0 * nu);
+  double dx = s->periodic ? s->lx / s->nx : s->lx / (s->nx - 1);
+  double a = s->dilation * dx;
+  dv->c = sqrt(s->modulus / rho);
+  dv->c_p = s->dim == 1 ? dv->c : sqrt((lam + 2.0 * mu) / rho);
+  dv->c_bulk = sqrt(E / (3.0 * (1.0 - 2.0 * nu)) / rho);
+  dv->h_sph = 0.5 * a;
+  dv->dt_rule_p = 0.3 * dv->h_sph / dv->c_p;
+  dv->dt_rule_bulk = 0.3 * dv->h_sph / dv->c_bulk;
+  dv->alpha = mfs_bound_alpha(s->kernel, s->dim);
+  double cw = s->physics == MFS_PHYS_PLANE_STRAIN ? dv->c_p : dv->c;
+  dv->bound_alpha = dv->alpha * cw * cw / (a * a);
+}
+
+void eigs_put(FILE *f, double v, int last)
+{
+  if (!isfinite(v))
+    cli_die(1, "a result is not finite (%g); no output written", v);
+  char b[40];
+  cli_fmt(b, sizeof b, v);
+  fputs(b, f);
+  fputc(last ? '\n' : ',', f);
+}
+
+void eigs_config_header(FILE *f)
+{
+  fputs("dim,nodes_x,nodes_y,length_x,length_y,dx,dy,kernel,shape,quadrature,mass,dilation,"
+        "support_radius,fixed,periodic,physics,modulus,density,poisson,wave_speed",
+        f);
+}
+
+void eigs_config_row(FILE *f, const eigs_opts *o, const eigs_derived *dv)
+{
+  const mfs_model_spec *s = &o->s;
+  double dx = s->periodic ? s->lx / s->nx : s->lx / (s->nx - 1);
+  double dy = s->dim == 1 ? 0.0 : (s->periodic ? s->ly / s->ny : s->ly / (s->ny - 1));
+  fprintf(f, "%d,%d,%d,", s->dim, s->nx, s->dim == 1 ? 1 : s->ny);
+  eigs_put(f, s->lx, 0);
+  eigs_put(f, s->dim == 1 ? 0.0 : s->ly, 0);
+  eigs_put(f, dx, 0);
+  eigs_put(f, dy, 0);
+  fprintf(f, "%s,%s,%s,%s,", s->kernel->name, s->shape->name, s->quadrature,
+          s->consistent_mass ? "consistent" : "lumped");
+  eigs_put(f, s->dilation, 0);
+  eigs_put(f, s->dilation * dx, 0);
+  const char *fixn = s->fixed == MFS_FIX_NONE ? "none" : (s->dim == 1 ? "ends" : "boundary");
+  fprintf(f, "%s,%d,%s,", fixn, s->periodic,
+          s->physics == MFS_PHYS_PLANE_STRAIN ? "plane-strain" : (s->dim == 1 ? "bar" : "antiplane"));
+  eigs_put(f, s->modulus, 0);
+  eigs_put(f, s->density, 0);
+  eigs_put(f, o->poisson, 0);
+  fprintf(f, "%.16g", dv->c);
+}
+
+/* Die with a clear line for a failed eigenvalue computation. */
+static _Noreturn void die_eig(int st, const mfs_eig_info *info, const char *what)
+{
+  if (st == MFS_ENOCONV)
+    cli_die(1,
+            "%s: ARPACK %s did not converge (info %d) after %d iterations, %d Ritz values "
+            "converged; raise --maxiter or --ncv, or loosen --arpack-tol",
+            what, info->routine, info->info, info->iterations, info->nconv);
+  if (st == MFS_EARPACK)
+    cli_die(1, "%s: ARPACK %s failed with info %d", what, info->routine, info->info);
+  if (st == MFS_EDOMAIN && strcmp(info->routine, "cholmod") == 0)
+    cli_die(1, "%s: CHOLMOD: the matrix to factor is not positive definite (status %d)", what,
+            info->cholmod_status);
+  cli_die(1, "%s: %s", what, mfs_strerror(st));
+}
+
+/* Write one Matrix Market file through the atomic output. */
+static void export_one(const mfs_model *m, const char *prefix, const char *which)
+{
+  size_t len = strlen(prefix) + 8;
+  char *path = malloc(len);
+  if (!path)
+    cli_die(1, "out of memory");
+  snprintf(path, len, "%s_%s.mtx", prefix, which);
+  cli_out o;
+  cli_out_open(&o, path);
+  int st = which[0] == 'K' ? mfs_model_write_mtx(m, o.f, NULL) : mfs_model_write_mtx(m, NULL, o.f);
+  if (st != MFS_OK)
+    cli_die(1, "--export-mtx %s: cannot write: %s", path, mfs_strerror(st));
+  cli_out_commit(&o);
+  free(path);
+}
+
+int cmd_eigs(int argc, char **argv)
+{
+  char helptext[12288];
+  snprintf(helptext, sizeof helptext, help, cli_disc_help);
+  eigs_opts o;
+  eigs_parse(argc, argv, helptext, 1, &o);
+  eigs_derived dv;
+  eigs_derive(&o, &dv);
+
+  int st;
+  size_t bad = 0;
+  mfs_model *m = mfs_model_alloc(&o.s, &st, &bad);
+  if (!m)
+    cli_die_status(st, &o.d, "at a quadrature point of the model");
+  mfs_bound_result br;
+  st = mfs_bound_of_model(m, &br);
+  if (st != MFS_OK)
+    cli_die(1, "element bound: %s", mfs_strerror(st));
+  mfs_model_release_plan(m);
+  if (o.export_prefix) {
+    export_one(m, o.export_prefix, "K");
+    export_one(m, o.export_prefix, "M");
+  }
+  double lf, kf, tf;
+  st = mfs_bound_fourier(&o.s, o.fourier_points, o.fourier_angles, &lf, &kf, &tf);
+  if (st != MFS_OK)
+    cli_die_status(st, &o.d, "Fourier estimate on the uniform lattice");
+
+  mfs_pencil P = {m->K, m->M, m->m};
+  mfs_eig_opts eo = {o.ncv, o.maxiter, o.arpack_tol};
+  mfs_eig_info info;
+  double lam = 0.0;
+  if (m->n < 2)
+    cli_die(2, "the model has %zu free degree of freedom; use more nodes", m->n);
+  st = mfs_eig_max(&P, &eo, &lam, NULL, &info);
+  if (st != MFS_OK)
+    die_eig(st, &info, "lambda_max");
+  if (!(lam > 0.0))
+    cli_die(1, "lambda_max = %g: the stiffness has no positive eigenvalue", lam);
+  int iters = info.iterations, mv = info.matvecs;
+  double resid = info.residual;
+
+  mfs_zero_modes z = {0};
+  mfs_eig_info zinfo = {0};
+  int rigid = 0;
+  if (o.zero_modes) {
+    mfs_zero_opts zo = {o.tol, o.nev, 0, 0};
+    st = mfs_eig_zero_modes(&P, lam, &zo, &eo, &z, &zinfo);
+    if (st != MFS_OK)
+      die_eig(st, &zinfo, "zero-energy modes");
+    int nr = mfs_model_rigid_fields(m, NULL);
+    if (nr > 0) {
+      double *r = malloc((size_t)nr * m->n * sizeof *r);
+      if (!r)
+        cli_die(1, "out of memory");
+      mfs_model_rigid_fields(m, r);
+      for (int k = 0; k < nr; k++)
+        rigid += mfs_eig_is_null(&P, r + (size_t)k * m->n, lam, o.tol);
+      free(r);
+    }
+  }
+
+  int bvalid = !o.s.consistent_mass && br.negative_phi == 0;
+  cli_out out;
+  cli_out_open(&out, o.outpath);
+  FILE *f = out.f;
+  eigs_config_header(f);
+  fputs(",dofs,lambda_max,omega_max,bound,bound_valid,negative_phi_points,bound_alpha,alpha,"
+        "lambda_fourier,kappa_fourier,theta_fourier,dt_crit,dt_bound,dt_alpha,dt_fourier,"
+        "dt_rule_p,dt_rule_bulk,bound_ratio,arpack_iterations,arpack_matvecs,arpack_residual",
+        f);
+  if (o.zero_modes)
+    fputs(",zero_tol,zero_modes,rigid_modes,spurious_modes,lambda_min_nonzero,zero_runs", f);
+  fputc('\n', f);
+  eigs_config_row(f, &o, &dv);
+  fprintf(f, ",%zu,", m->n);
+  eigs_put(f, lam, 0);
+  eigs_put(f, sqrt(lam), 0);
+  eigs_put(f, br.lambda, 0);
+  fprintf(f, "%d,%zu,", bvalid, br.negative_phi);
+  eigs_put(f, dv.bound_alpha, 0);
+  eigs_put(f, dv.alpha, 0);
+  eigs_put(f, lf, 0);
+  eigs_put(f, kf, 0);
+  eigs_put(f, tf * 180.0 / M_PI, 0);
+  eigs_put(f, mfs_dt_crit(lam), 0);
+  eigs_put(f, mfs_dt_crit(br.lambda), 0);
+  eigs_put(f, mfs_dt_crit(dv.bound_alpha), 0);
+  eigs_put(f, mfs_dt_crit(lf), 0);
+  eigs_put(f, dv.dt_rule_p, 0);
+  eigs_put(f, dv.dt_rule_bulk, 0);
+  eigs_put(f, br.lambda / lam, 0);
+  fprintf(f, "%d,%d,", iters, mv);
+  eigs_put(f, resid, !o.zero_modes);
+  if (o.zero_modes) {
+    eigs_put(f, o.tol, 0);
+    fprintf(f, "%d,%d,%d,", z.count, rigid, z.count - rigid);
+    eigs_put(f, z.lambda_min_nonzero, 0);
+    fprintf(f, "%d\n", zinfo.runs);
+  }
+  cli_out_commit(&out);
+  mfs_model_free(m);
+  return 0;
+}
+
+/* ------------------------------------------------------------------ */
+/* Figs 17 and 18                                                      */
+
+static int fig_row(FILE *f, const char *fig, const mfs_model_spec *s, int nodes)
+{
+  int st;
+  size_t bad;
+  mfs_model *m = mfs_model_alloc(s, &st, &bad);
+  if (!m) {
+    fprintf(stderr, "mfstab %s: %s D = %g: %s\n", cli_command, fig, s->dilation, mfs_strerror(st));
+    return 1;
+  }
+  mfs_bound_result br;
+  mfs_bound_of_model(m, &br);
+  mfs_pencil P = {m->K, m->M, m->m};
+  mfs_eig_opts eo = {0, 0, 1e-13};
+  mfs_eig_info info;
+  double lam;
+  st = mfs_eig_max(&P, &eo, &lam, NULL, &info);
+  if (st != MFS_OK || !(lam > 0.0)) {
+    fprintf(stderr, "mfstab %s: %s D = %g: ARPACK: %s (info %d)\n", cli_command, fig, s->dilation,
+            mfs_strerror(st), info.info);
+    mfs_model_free(m);
+    return 1;
+  }
+  double dx2 = m->dx * m->dx, D2 = s->dilation * s->dilation;
+  double alpha = mfs_bound_alpha(s->kernel, s->dim);
+  double paper1 = s->dim == 1 ? MFS_PAPER_ALPHA : MFS_PAPER_ALPHA1;
+  fprintf(f, "%s,%s,%s,%s,lumped,%d,%.16g,%.16g,%.16g,%.16g,%.16g,", fig, s->kernel->name,
+          s->shape->name, s->quadrature, nodes, s->dilation, lam * dx2, br.lambda * dx2,
+          alpha / D2, paper1 / D2);
+  if (s->dim == 2) /* eq. 148 is 2D only: an empty field in 1D */
+    fprintf(f, "%.16g", MFS_PAPER_ALPHA2 / D2);
+  fprintf(f, ",%.16g,%.16g,%zu\n", br.lambda / lam, alpha / D2 / (lam * dx2), br.negative_phi);
+  mfs_model_free(m);
+  return 0;
+}
+
+static int fig_file(const char *dir, const char *name, const mfs_kernel_type *k, int dim)
+{
+  size_t len = strlen(dir) + strlen(name) + 2;
+  char *path = malloc(len), *tmp = malloc(len + 8);
+  if (!path || !tmp)
+    return 1;
+  snprintf(path, len, "%s/%s", dir, name);
+  snprintf(tmp, len + 8, "%s.tmp", path);
+  FILE *f = fopen(tmp, "w");
+  int bad = !f;
+  if (f) {
+    fputs("figure,kernel,shape,quadrature,mass,nodes,dilation,lambda_max_dx2,bound_dx2,"
+          "alpha_dx2,paper_alpha_dx2,paper_alpha2_dx2,bound_ratio,alpha_ratio,negative_phi_points\n",
+          f);
+    mfs_model_spec s;
+    mfs_model_spec_default(&s);
+    s.kernel = k;
+    s.quadrature = "gauss2";
+    if (dim == 1) {
+      static const int nn[2] = {41, 101};
+      for (int a = 0; a < 2 && !bad; a++)
+        for (int i = 0; i <= 12 && !bad; i++) {
+          s.nx = nn[a];
+          s.dilation = 1.0 + 0.25 * i;
+          bad = fig_row(f, "17", &s, nn[a]);
+        }
+    } else {
+      s.dim = 2;
+      s.nx = s.ny = 21;
+      for (int i = 0; i <= 14 && !bad; i++) {
+        s.dilation = 1.5 + 0.25 * i;
+        bad = fig_row(f, "18", &s, 21 * 21);
+      }
+    }
+    bad |= ferror(f);
+    bad |= fclose(f) != 0;
+  }
+  if (!bad && rename(tmp, path) != 0)
+    bad = 1;
+  if (bad) {
+    remove(tmp);
+    fprintf(stderr, "mfstab %s: cannot write %s\n", cli_command, path);
+  }
+  free(path);
+  free(tmp);
+  return bad;
+}
+
+int eigs_figure17(const char *dir)
+{
+  int bad = 0;
+  bad |= fig_file(dir, "fig17_cubic.csv", &mfs_kernel_cubic, 1);
+  bad |= fig_file(dir, "fig17_quartic.csv", &mfs_kernel_quartic, 1);
+  bad |= fig_file(dir, "fig18_cubic.csv", &mfs_kernel_cubic, 2);
+  bad |= fig_file(dir, "fig18_quartic.csv", &mfs_kernel_quartic, 2);
+  return bad ? 1 : 0;
+}
