@@ -105,13 +105,15 @@ static int add_terms(mfs_disp_plan *dp, const mfs_plan *pl, size_t I, int cls, r
 
 /* Accumulate row I of A, G and M over all quadrature points that see I. */
 static void row_accumulate(const mfs_disp_plan *dp, const mfs_plan *pl, size_t I, row_acc *acc,
-                           double *mu)
+                           double *mu, int *status)
 {
+  *status = MFS_OK;
   const mfs_disp_spec *s = &dp->spec;
   const mfs_nlist *nl = pl->nl;
   const mfs_quad *q = pl->q;
   int dim = pl->dim, nc = pl->ncomp;
-  int euler = s->frame == MFS_FRAME_EULERIAN && s->dim == 1 && s->physics == MFS_PHYS_SCALAR;
+  int euler = s->frame != MFS_FRAME_LAGRANGIAN && s->dim == 1 && s->physics == MFS_PHYS_SCALAR;
+  int consistent = s->frame == MFS_FRAME_EULERIAN_CONSISTENT;
   double F = s->stretch > 0.0 ? s->stretch : 1.0, beta = s->ls_beta;
   for (size_t Q = 0; Q < nl->nq; Q++) {
     size_t e0 = nl->ptr[Q], e1 = nl->ptr[Q + 1], eI = e1;
@@ -152,7 +154,16 @@ static void row_accumulate(const mfs_disp_plan *dp, const mfs_plan *pl, size_t I
         a->A[0] += beta * w * lapI * lapK;
         a->M -= beta * w * lapI * fk[0];
       }
-      if (euler) {
+      if (euler && consistent) {
+        /* phi_I''(Q) u~_Q with u~_Q = u~_node or sum_K phi_K(Q) u~_K; the
+         * position derivatives d phi_I'(Q)/d x_K are added per point below */
+        if (q->node[Q] >= 0) {
+          if (K == q->node[Q])
+            a->G += w * lapI;
+        } else {
+          a->G += w * lapI * fk[0];
+        }
+      } else if (euler) {
         /* kernel motion, phi_I''(Q) (u~_Q - u~_I): eqs 71, 89-92 */
         if (q->node[Q] >= 0) {
           if (K == q->node[Q])
@@ -168,8 +179,31 @@ static void row_accumulate(const mfs_disp_plan *dp, const mfs_plan *pl, size_t I
         }
       }
     }
-    if (euler)
+    if (euler && !consistent)
       acc[I].G -= w * lapI, acc[I].used = 1;
+    if (euler && consistent) {
+      int nn = (int)(e1 - e0), iI = (int)(eI - e0);
+      double dq[64], vq[64], dphi[64], dgrad[64];
+      if (nn > 64) {
+        *status = MFS_ENOTSUP;
+        return;
+      }
+      for (int j = 0; j < nn; j++) {
+        double dd[3];
+        mfs_box_delta(&pl->p->box, q->x + Q * dim, pl->p->x + (size_t)nl->idx[e0 + j] * dim, dd);
+        dq[j] = dd[0];
+        vq[j] = pl->p->vol[nl->idx[e0 + j]];
+      }
+      for (int k = 0; k < nn; k++) {
+        int st = mfs_shape_dpos_1d(s->shape, &pl->ctx, nn, dq, vq, k, dphi, dgrad);
+        if (st != MFS_OK) {
+          *status = st;
+          return;
+        }
+        acc[nl->idx[e0 + k]].G += w * dgrad[iI];
+        acc[nl->idx[e0 + k]].used = 1;
+      }
+    }
   }
 }
 
@@ -192,6 +226,12 @@ mfs_disp_plan *mfs_disp_plan_alloc(const mfs_disp_spec *s, int *status)
     goto done;
   if (s->dim == 2 && s->stretch > 0.0 && s->stretch != 1.0)
     goto done;
+  /* the consistent frame: 1D; a pre-stretch moves interpolated points exactly
+   * with sum_K phi_K u~_K only for linearly complete shapes */
+  if (s->frame == MFS_FRAME_EULERIAN_CONSISTENT &&
+      (s->dim != 1 || (s->stretch > 0.0 && s->stretch != 1.0 && s->shape != &mfs_shape_mls) ||
+       (s->shape != &mfs_shape_mls && s->shape != &mfs_shape_shepard && s->shape != &mfs_shape_sph)))
+    goto done;
   st = MFS_ENOMEM;
   dp = calloc(1, sizeof *dp);
   if (!dp)
@@ -211,7 +251,7 @@ mfs_disp_plan *mfs_disp_plan_alloc(const mfs_disp_spec *s, int *status)
   q = mfs_quad_alloc(&rule, p, &st);
   if (!q)
     goto done;
-  int need2 = (s->frame == MFS_FRAME_EULERIAN && s->dim == 1) || s->ls_beta > 0.0;
+  int need2 = (s->frame != MFS_FRAME_LAGRANGIAN && s->dim == 1) || s->ls_beta > 0.0;
   mfs_plan_spec ps = {s->kernel, s->shape, s->dilation, need2 ? 2 : 1, 1e-12};
   pl = mfs_plan_alloc(&ps, p, q, &st, NULL);
   if (!pl)
@@ -241,7 +281,9 @@ mfs_disp_plan *mfs_disp_plan_alloc(const mfs_disp_spec *s, int *status)
   for (int b = 0; b < dp->nb; b++) {
     size_t I = (size_t)b; /* particles 0 and 1: (0,0) and (1,0) of the lattice */
     memset(acc, 0, p->n * sizeof *acc);
-    row_accumulate(dp, pl, I, acc, mu);
+    row_accumulate(dp, pl, I, acc, mu, &st);
+    if (st != MFS_OK)
+      goto done;
     st = add_terms(dp, pl, I, node_class(s, p, I), acc, &cap);
     if (st != MFS_OK)
       goto done;
@@ -271,7 +313,7 @@ int mfs_disp_symbols(const mfs_disp_plan *dp, double sbar, const double *k, doub
   if (s->physics == MFS_PHYS_PLANE_STRAIN) {
     ca = 1.0;
     cg = 0.0;
-  } else if (s->dim == 1 && s->frame == MFS_FRAME_EULERIAN) {
+  } else if (s->dim == 1 && s->frame != MFS_FRAME_LAGRANGIAN) {
     ca = 1.0 + 2.0 * sbar; /* C~ + sigma, eq. 75 */
     cg = sbar;
   } else if (s->dim == 1) {
@@ -315,6 +357,7 @@ int mfs_disp_omega2(const mfs_disp_plan *dp, double sbar, double kappa, double t
     return MFS_OK;
   }
   int herm = dp->spec.frame == MFS_FRAME_LAGRANGIAN || dp->spec.dim == 2;
+  /* (1D Eulerian symbols are 1 x 1) */
   herm = herm && dp->spec.ls_beta == 0.0;
   if (herm) {
     double wr[4];

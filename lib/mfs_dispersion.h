@@ -15,6 +15,8 @@
  *       G_IK = sum_Q w_Q phi_I''(Q) (T_QK - delta_IK),  u~_Q = sum_K T_QK u~_K:
  *       T_QK = delta at a particle (eq. 71); at a stress or Gauss point
  *       T_QK = F (phi_K(Q) - phi_K'(Q) u_K), u_K = (1 - 1/F)(x_K - x_I) (eqs 90-92).
+ *   Eulerian, consistent: G_IK = sum_Q w_Q [phi_I''(Q) T_QK + d phi_I'(Q) / d x_K],
+ *       T_QK = delta at a particle, phi_K(Q) elsewhere (exact for linearly complete shapes).
  *   Least squares (Beissel-Belytschko, eqs 104-107): A += beta sum_Q w phi_I'' phi_K'',
  *       M_IK -= beta sum_Q w phi_I'' phi_K.
  * 2D anti-plane: K = (1 + sbar) A with A = sum_Q w grad phi_I . grad phi_K (eq. 113);
@@ -28,7 +30,12 @@
 
 #include "mfs_assemble.h"
 
-typedef enum { MFS_FRAME_LAGRANGIAN, MFS_FRAME_EULERIAN } mfs_frame;
+/* Kernel frames: Lagrangian; Eulerian as linearized by the paper (eq. 71:
+ * phi_I moves rigidly with particle I); Eulerian, consistent: the exact
+ * linearization of shape functions re-evaluated in current coordinates,
+ * including the dependence of phi_I(x) on every neighbour's position
+ * (1D; docs/errata.md E2). */
+typedef enum { MFS_FRAME_LAGRANGIAN, MFS_FRAME_EULERIAN, MFS_FRAME_EULERIAN_CONSISTENT } mfs_frame;
 
 typedef struct {
   int dim;                  /* 1 or 2 */

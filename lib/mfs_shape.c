@@ -428,6 +428,86 @@ static int mls_fast_order1(const mfs_shape_ctx *c, int nn, const double *d, doub
   return MFS_OK;
 }
 
+int mfs_shape_dpos_1d(const mfs_shape_type *t, const mfs_shape_ctx *c, int nn, const double *d,
+                      const double *v, int K, double *dphi, double *dgrad)
+{
+  if (c->dim != 1 || nn < 1 || K < 0 || K >= nn)
+    return MFS_EINVAL;
+  int m = t == &mfs_shape_mls ? 2 : 1;
+  if (t != &mfs_shape_mls && t != &mfs_shape_shepard && t != &mfs_shape_sph)
+    return MFS_ENOTSUP;
+  for (int J = 0; J < nn; J++)
+    dphi[J] = dgrad[J] = 0.0;
+  if (t == &mfs_shape_sph) { /* phi_J = V_J W(x_J - x): only J = K moves */
+    mfs_kernel_value kv = mfs_kernel_radial(c->kernel, 1, c->a, fabs(d[K]));
+    double sg = d[K] > 0.0 ? 1.0 : (d[K] < 0.0 ? -1.0 : 0.0);
+    dphi[K] = v[K] * kv.dW * sg;
+    dgrad[K] = -v[K] * kv.d2W;
+    return MFS_OK;
+  }
+  /* values (W, W_x = dW/dx, p) and their duals (derivatives wrt x_K) */
+  double A[4] = {0}, At[4] = {0}, B[4] = {0}, Bt[4] = {0};
+  double ia = 1.0 / c->a;
+  for (int J = 0; J < nn; J++) {
+    mfs_kernel_value kv = mfs_kernel_radial(c->kernel, 1, c->a, fabs(d[J]));
+    double sg = d[J] > 0.0 ? 1.0 : (d[J] < 0.0 ? -1.0 : 0.0), e = J == K ? 1.0 : 0.0;
+    double W = kv.W, Wt = kv.dW * sg * e, Wx = -kv.dW * sg, Wxt = -kv.d2W * e;
+    double p[2] = {1.0, d[J] * ia}, pt[2] = {0.0, e * ia};
+    for (int i = 0; i < m; i++)
+      for (int j = 0; j < m; j++) {
+        double pp = p[i] * p[j], ppt = pt[i] * p[j] + p[i] * pt[j];
+        A[i * m + j] += W * pp;
+        At[i * m + j] += Wt * pp + W * ppt;
+        B[i * m + j] += Wx * pp;
+        Bt[i * m + j] += Wxt * pp + Wx * ppt;
+      }
+  }
+  double Ai[4];
+  if (m == 1) {
+    if (!(A[0] > 0.0))
+      return MFS_ESINGULAR;
+    Ai[0] = 1.0 / A[0];
+  } else {
+    double det = A[0] * A[3] - A[1] * A[2];
+    if (!(det > 0.0))
+      return MFS_ESINGULAR;
+    Ai[0] = A[3] / det, Ai[1] = -A[1] / det, Ai[2] = -A[2] / det, Ai[3] = A[0] / det;
+  }
+#define MV(M, x, i) ((M)[(i) * m] * (x)[0] + (m > 1 ? (M)[(i) * m + 1] * (x)[1] : 0.0))
+  double g[2], gt[2], gx[2], gxt[2], r[2], rt[2];
+  for (int i = 0; i < m; i++)
+    g[i] = Ai[i * m];
+  for (int i = 0; i < m; i++) /* gamma~ = -A^-1 A~ gamma */
+    r[i] = -MV(At, g, i);
+  for (int i = 0; i < m; i++)
+    gt[i] = MV(Ai, r, i);
+  for (int i = 0; i < m; i++) /* gamma_x = A^-1 (e1/a - B gamma) */
+    r[i] = (i == 1 ? ia : 0.0) - MV(B, g, i);
+  for (int i = 0; i < m; i++)
+    gx[i] = MV(Ai, r, i);
+  for (int i = 0; i < m; i++) /* gamma_x~ = A^-1 (-A~ gamma_x - B~ gamma - B gamma~) */
+    rt[i] = -MV(At, gx, i) - MV(Bt, g, i) - MV(B, gt, i);
+  for (int i = 0; i < m; i++)
+    gxt[i] = MV(Ai, rt, i);
+#undef MV
+  for (int J = 0; J < nn; J++) {
+    mfs_kernel_value kv = mfs_kernel_radial(c->kernel, 1, c->a, fabs(d[J]));
+    double sg = d[J] > 0.0 ? 1.0 : (d[J] < 0.0 ? -1.0 : 0.0), e = J == K ? 1.0 : 0.0;
+    double W = kv.W, Wt = kv.dW * sg * e, Wx = -kv.dW * sg, Wxt = -kv.d2W * e;
+    double p[2] = {1.0, d[J] * ia}, pt[2] = {0.0, e * ia};
+    double gp = 0, gpt = 0, gxp = 0, gxpt = 0;
+    for (int i = 0; i < m; i++) {
+      gp += g[i] * p[i];
+      gpt += gt[i] * p[i] + g[i] * pt[i];
+      gxp += gx[i] * p[i];
+      gxpt += gxt[i] * p[i] + gx[i] * pt[i];
+    }
+    dphi[J] = gpt * W + gp * Wt;
+    dgrad[J] = gxpt * W + gxp * Wt + gpt * Wx + gp * Wxt;
+  }
+  return MFS_OK;
+}
+
 static int sph_eval(const mfs_shape_ctx *c, int nn, const double *d, const double *v, int self,
                     int order, double *out, double *work, double *rcond)
 {

@@ -60,4 +60,13 @@ static inline int mfs_shape_ncomp(int dim, int order)
 
 size_t mfs_shape_work_len(int dim, int nn);
 
+/* 1D, for the consistent linearization of an Eulerian kernel: the derivatives
+ * of phi_J(x) and of its gradient g_J(x) = d phi_J / dx with respect to the
+ * position of neighbour K (d[K] = x_K - x), all other positions and x fixed,
+ * for every J: dphi[J] = d phi_J / d x_K, dgrad[J] = d g_J / d x_K.  Exact
+ * (forward-mode dual numbers through the MLS formulas).  sph, shepard and mls;
+ * MFS_ENOTSUP for kb and rl, MFS_ESINGULAR as eval. */
+int mfs_shape_dpos_1d(const mfs_shape_type *t, const mfs_shape_ctx *c, int nn, const double *d,
+                      const double *v, int K, double *dphi, double *dgrad);
+
 #endif

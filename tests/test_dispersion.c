@@ -339,6 +339,108 @@ static void paths_agree(void)
   printf("paths (a) and (b): largest relative difference %.3g\n", worst);
 }
 
+/* Nonlinear Eulerian internal force of a periodic chain with nodal
+ * integration, shape functions re-solved at the current positions x = X + u:
+ * f_I = sum_J V_J phi_I'(x_J) sigma_J, V_J = 1 + h_J, sigma_J = sbar + (1 + sbar) h_J,
+ * h_J = sum_K phi_K'(x_J) u_K (C = 1, V0 = 1; its linearization is eqs 70-73). */
+static void chain_force(const mfs_shape_type *sh, double D, double sbar, int N, const double *u,
+                        double *f)
+{
+  mfs_shape_ctx c = {&mfs_kernel_quartic, 1, D, 0.0};
+  double d[32], v[32], out[32 * 2], work[512], rc, h[64];
+  int idx[32];
+  for (int pass = 0; pass < 2; pass++) {
+    for (int I = 0; I < N; I++)
+      f[I] = 0.0;
+    for (int J = 0; J < N; J++) {
+      double xJ = J + u[J];
+      int nn = 0;
+      for (int K = 0; K < N; K++) {
+        double t = (K + u[K]) - xJ;
+        t -= N * nearbyint(t / N);
+        if (fabs(t) < D) {
+          d[nn] = t;
+          v[nn] = 1.0;
+          idx[nn++] = K;
+        }
+      }
+      sh->eval(&c, nn, d, v, -1, 1, out, work, &rc);
+      if (pass == 0) {
+        h[J] = 0.0;
+        for (int k = 0; k < nn; k++)
+          h[J] += out[2 * k + 1] * u[idx[k]];
+      } else {
+        double V = 1.0 + h[J], sig = sbar + (1.0 + sbar) * h[J];
+        for (int k = 0; k < nn; k++)
+          f[idx[k]] += V * out[2 * k + 1] * sig;
+      }
+    }
+  }
+}
+
+static void consistent_frame(void)
+{
+  const double k = 1e-3, kk = k * M_PI;
+  const double sb[4] = {-0.37, 0.0, 0.3, 1.21};
+  for (int s = 0; s < 3; s++)
+    for (double D = 1.5; D <= 2.6; D += 0.5) {
+      const mfs_shape_type *sh = s == 0 ? &mfs_shape_mls : s == 1 ? &mfs_shape_shepard : &mfs_shape_sph;
+      const char *quads[3] = {"nodal", "stress", "gauss2"};
+      for (int qi = 0; qi < 3; qi++) {
+        mfs_disp_plan *p = plan1d(quads[qi], &mfs_kernel_quartic, sh, D, MFS_FRAME_EULERIAN_CONSISTENT, 0);
+        mfs_disp_plan *l = plan1d(quads[qi], &mfs_kernel_quartic, sh, D, MFS_FRAME_LAGRANGIAN, 0);
+        if (!p || !l)
+          continue;
+        /* the consistent linearization has the limit of its Lagrangian
+         * counterpart: 1 + sbar for the linearly complete mls */
+        for (int i = 0; i < 4; i++) {
+          double le = w2(p, sb[i], k, 0, 0) / (kk * kk), ll = w2(l, sb[i], k, 0, 0) / (kk * kk);
+          /* shepard and sph are not linearly complete: no exact limit; their
+           * operators are checked against finite differences below */
+          if (sh == &mfs_shape_mls)
+            CHECK_NEAR(le, 1.0 + sb[i], 2e-4, "consistent Eulerian %s D=%g sbar=%g: continuum limit", quads[qi], D, sb[i]);
+          (void)ll;
+        }
+        mfs_disp_plan_free(p);
+        mfs_disp_plan_free(l);
+      }
+    }
+  /* against central differences of the nonlinear force of a periodic chain */
+  enum { N = 24 };
+  for (int s = 0; s < 3; s++)
+    for (double D = 1.5; D <= 2.6; D += 0.5) {
+      const mfs_shape_type *sh = s == 0 ? &mfs_shape_mls : s == 1 ? &mfs_shape_shepard : &mfs_shape_sph;
+      mfs_disp_plan *p = plan1d("nodal", &mfs_kernel_quartic, sh, D, MFS_FRAME_EULERIAN_CONSISTENT, 0);
+      mfs_disp_plan *e = plan1d("nodal", &mfs_kernel_quartic, sh, D, MFS_FRAME_EULERIAN, 0);
+      const double sbar = 0.4137, eps = 1e-6;
+      double worst = 0.0, paper = 0.0;
+      for (int m = 1; m <= N / 2; m++) {
+        double kap = 2.0 * m / N, up[N], um[N], fp[N], fm[N];
+        for (int I = 0; I < N; I++) {
+          up[I] = eps * cos(M_PI * kap * I);
+          um[I] = -up[I];
+        }
+        chain_force(sh, D, sbar, N, up, fp);
+        chain_force(sh, D, sbar, N, um, fm);
+        double Kc = w2(p, sbar, kap, 0, 0), Kp = w2(e, sbar, kap, 0, 0); /* lumped mass 1 */
+        for (int I = 0; I < N; I++) {
+          double fd = (fp[I] - fm[I]) / (2 * eps);
+          worst = fmax(worst, fabs(fd - Kc * cos(M_PI * kap * I)));
+          paper = fmax(paper, fabs(fd - Kp * cos(M_PI * kap * I)));
+        }
+      }
+      /* central differences, eps = 1e-6: truncation ~1e-6 where particles sit on
+       * the support boundary (D = 2) */
+      CHECK(worst < 1e-5, "%s D=%g: consistent symbol vs finite differences of the force: %.3g", sh->name, D, worst);
+      if (sh != &mfs_shape_sph) /* for sph, eq. 71 is the exact linearization */
+        CHECK(paper > 1e-3, "%s D=%g: eq. 71 linearization should differ from the exact one (%.3g)", sh->name, D, paper);
+      else
+        CHECK(paper < 1e-5, "sph D=%g: eq. 71 is exact for sph: %.3g", D, paper);
+      mfs_disp_plan_free(p);
+      mfs_disp_plan_free(e);
+    }
+}
+
 static void errors(void)
 {
   int st;
@@ -365,6 +467,7 @@ int main(void)
   symbols();
   geometry();
   paths_agree();
+  consistent_frame();
   errors();
   return check_summary("test_dispersion");
 }

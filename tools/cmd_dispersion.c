@@ -24,7 +24,10 @@ static const char help[] =
   "stresses, and the labels material / tensile / rank-deficiency (or stable).\n"
   "options:\n"
   "%s"
-  "  --frame eulerian|lagrangian   kernel frame (default lagrangian)\n"
+  "  --frame eulerian|eulerian-consistent|lagrangian   kernel frame (default lagrangian):\n"
+  "                          eulerian linearizes the kernel motion as the paper does (eq. 71);\n"
+  "                          eulerian-consistent exactly, for shape functions re-solved in\n"
+  "                          current coordinates (1D; mls, shepard, sph)\n"
   "  --physics antiplane|plane-strain   2D problem (default antiplane); --poisson NU (0.25)\n"
   "  --dilation LIST         comma-separated dilations\n"
   "  --stress LIST           comma-separated normalized stresses sigma/C (default 0)\n"
@@ -44,7 +47,9 @@ typedef struct {
 
 static const char *frame_name(mfs_frame f)
 {
-  return f == MFS_FRAME_EULERIAN ? "eulerian" : "lagrangian";
+  return f == MFS_FRAME_EULERIAN ? "eulerian"
+         : f == MFS_FRAME_EULERIAN_CONSISTENT ? "eulerian-consistent"
+                                               : "lagrangian";
 }
 
 /* omega^2 along one ray; dies on a numerical failure. */
@@ -144,8 +149,10 @@ int cmd_dispersion(int argc, char **argv)
         frame = MFS_FRAME_EULERIAN;
       else if (strcmp(val, "lagrangian") == 0)
         frame = MFS_FRAME_LAGRANGIAN;
+      else if (strcmp(val, "eulerian-consistent") == 0)
+        frame = MFS_FRAME_EULERIAN_CONSISTENT;
       else
-        cli_die(2, "--frame '%s': allowed: eulerian, lagrangian", val);
+        cli_die(2, "--frame '%s': allowed: eulerian, eulerian-consistent, lagrangian", val);
     } else if (strcmp(opt, "--physics") == 0) {
       if (strcmp(val, "antiplane") == 0)
         phys = MFS_PHYS_SCALAR;
@@ -237,7 +244,9 @@ int cmd_dispersion(int argc, char **argv)
     plans[i] = mfs_disp_plan_alloc(&s, &st);
     if (!plans[i]) {
       if (st == MFS_ENOTSUP)
-        cli_die(2, "this combination is not covered by the analysis (see mfstab dispersion --help)");
+        cli_die(2, "--frame %s: this combination (dimension, shape, stretch, physics) is not covered by "
+                   "the analysis; see mfstab dispersion --help",
+                frame_name(frame));
       cli_die_status(st, &d, "at a quadrature point of the lattice");
     }
   }
