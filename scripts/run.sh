@@ -5,6 +5,5 @@ set -euo pipefail
 cd "$(dirname "$0")/.."
 bash scripts/install-deps.sh
 bash scripts/build.sh
-build/tools/mfstab reproduce --out notebooks-data
-/usr/bin/python3 analysis/plot_figures.py notebooks-data
+bash analysis/figures.sh build notebooks-data
 echo "plots: notebooks-data/*.png"
