@@ -51,6 +51,20 @@ typedef struct {
   int used;
 } row_acc;
 
+/* A new term at the end of dp->t (grown by doubling); NULL when out of memory. */
+static disp_term *push_term(mfs_disp_plan *dp, size_t *cap)
+{
+  if (dp->nterm == *cap) {
+    size_t ncap = 2 * *cap + 64;
+    disp_term *t = realloc(dp->t, ncap * sizeof *t);
+    if (!t)
+      return NULL;
+    dp->t = t;
+    *cap = ncap;
+  }
+  return dp->t + dp->nterm++;
+}
+
 static int add_terms(mfs_disp_plan *dp, const mfs_plan *pl, size_t I, int cls, row_acc *acc,
                      size_t *cap)
 {
@@ -66,15 +80,9 @@ static int add_terms(mfs_disp_plan *dp, const mfs_plan *pl, size_t I, int cls, r
     for (int r = 0; r < nd; r++) {
       msum[r] += acc[K].M;
       for (int c = 0; c < nd; c++) {
-        if (dp->nterm == *cap) {
-          size_t ncap = 2 * *cap + 64;
-          disp_term *t = realloc(dp->t, ncap * sizeof *t);
-          if (!t)
-            return MFS_ENOMEM;
-          dp->t = t;
-          *cap = ncap;
-        }
-        disp_term *t = dp->t + dp->nterm++;
+        disp_term *t = push_term(dp, cap);
+        if (!t)
+          return MFS_ENOMEM;
         t->row = cls * nd + r;
         t->col = ck * nd + c;
         t->d[0] = d[0];
@@ -89,15 +97,9 @@ static int add_terms(mfs_disp_plan *dp, const mfs_plan *pl, size_t I, int cls, r
     msum[0] = msum[1] = p->vol[I];
   if (!dp->spec.consistent_mass) /* lumped: row sums on the diagonal */
     for (int r = 0; r < nd; r++) {
-      if (dp->nterm == *cap) {
-        size_t ncap = 2 * *cap + 64;
-        disp_term *t = realloc(dp->t, ncap * sizeof *t);
-        if (!t)
-          return MFS_ENOMEM;
-        dp->t = t;
-        *cap = ncap;
-      }
-      disp_term *t = dp->t + dp->nterm++;
+      disp_term *t = push_term(dp, cap);
+      if (!t)
+        return MFS_ENOMEM;
       *t = (disp_term){cls * nd + r, cls * nd + r, {0.0, 0.0}, 0.0, 0.0, msum[r]};
     }
   return MFS_OK;
