@@ -15,6 +15,7 @@
 #include "mfs_particles.h"
 #include "mfs_quad.h"
 #include "mfs_shape.h"
+#include "mfs_solver.h"
 #include "mfs_status.h"
 #include "mfs_voronoi.h"
 

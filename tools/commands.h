@@ -7,6 +7,7 @@ int cmd_dispersion(int argc, char **argv);
 int cmd_reproduce(int argc, char **argv);
 int cmd_eigs(int argc, char **argv);
 int cmd_bound(int argc, char **argv);
+int cmd_run(int argc, char **argv);
 
 /* Iterate "--opt value", "--opt=value" and "-o value" pairs.  Returns 0 at
  * the end, 1 with *opt and *val set (val NULL for a flag listed in flags,

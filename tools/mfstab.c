@@ -14,6 +14,7 @@ static const char usage[] =
   "  dispersion   von Neumann dispersion curves and stability classification\n"
   "  eigs         extreme eigenvalues, zero-energy modes and critical time step of a finite model\n"
   "  bound        cheap element eigenvalue bound and critical time step (eqs 123-146)\n"
+  "  run          explicit reference solver on a scene file (INI)\n"
   "  reproduce    regenerate the reproduced tables and figures into notebooks-data/\n";
 
 void opt_init(opt_iter *it, int argc, char **argv, const char *help, const char *const *flags)
@@ -92,12 +93,12 @@ int main(int argc, char **argv)
     const char *name;
     int (*run)(int, char **);
   } cmds[] = {{"stencil", cmd_stencil}, {"dispersion", cmd_dispersion}, {"reproduce", cmd_reproduce},
-                 {"eigs", cmd_eigs}, {"bound", cmd_bound}};
+                 {"eigs", cmd_eigs}, {"bound", cmd_bound}, {"run", cmd_run}};
   for (size_t i = 0; i < sizeof cmds / sizeof cmds[0]; i++)
     if (strcmp(argv[1], cmds[i].name) == 0) {
       cli_command = cmds[i].name;
       return cmds[i].run(argc - 1, argv + 1);
     }
-  fprintf(stderr, "mfstab: '%s': unknown command; allowed: stencil, dispersion, eigs, bound, reproduce\n", argv[1]);
+  fprintf(stderr, "mfstab: '%s': unknown command; allowed: stencil, dispersion, eigs, bound, run, reproduce\n", argv[1]);
   return 2;
 }

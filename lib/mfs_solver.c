@@ -1,0 +1,573 @@
+/* Reference explicit solver (see mfs_solver.h). */
+#include "mfs_solver.h"
+
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "mfs_bound.h"
+#include "mfs_neighbor.h"
+#include "mfs_status.h"
+
+struct mfs_solver_work {
+  mfs_particles *p;
+  mfs_quad *q;
+  mfs_plan *pl;          /* Lagrangian table (order 1), built once */
+  unsigned char *fixed;  /* n: displacement prescribed (fixed or velocity end) */
+  double *f, *f0;        /* n: internal force, equilibration load */
+  double *u0, *v0;       /* n: RK stage base */
+  double *ku, *kv;       /* 4n each: RK stage derivatives */
+  double *tu;            /* n: stage displacement */
+  /* Eulerian */
+  double *x, *xq;        /* n, nq current positions */
+  double *xb, *xqb;      /* positions at the last neighbour search */
+  mfs_nlist *cand;       /* candidates within a + skin */
+  size_t cap;            /* capacity of the per-point buffers */
+  double *d, *vol, *out, *swork;
+  int *loc;
+  double a, skin;
+};
+
+static const char *const scheme_names[] = {"leapfrog", "euler", "rk2", "rk4"};
+
+const char *mfs_scheme_name(mfs_scheme s)
+{
+  return (unsigned)s < 4 ? scheme_names[s] : "?";
+}
+
+int mfs_scheme_parse(const char *name, mfs_scheme *s)
+{
+  for (int i = 0; i < 4; i++)
+    if (strcmp(name, scheme_names[i]) == 0) {
+      *s = (mfs_scheme)i;
+      return MFS_OK;
+    }
+  return MFS_EINVAL;
+}
+
+/* 1D St Venant-Kirchhoff with initial stress: P = F S, S = E (F^2-1)/2 + S0. */
+static inline double pk1(const mfs_solver_spec *sp, double F)
+{
+  return F * (0.5 * sp->modulus * (F * F - 1.0) + sp->initial_stress);
+}
+
+/* Prescribed velocity of end k at time t. */
+static double bc_vel(const mfs_solver_spec *sp, int k, double t)
+{
+  return sp->bc[k] == MFS_BC_VELOCITY && t <= sp->bc_until[k] ? sp->bc_velocity[k] : 0.0;
+}
+
+/* Its time integral from 0 (the end's displacement). */
+static double bc_disp(const mfs_solver_spec *sp, int k, double t)
+{
+  if (sp->bc[k] != MFS_BC_VELOCITY)
+    return 0.0;
+  return sp->bc_velocity[k] * fmin(t, sp->bc_until[k]);
+}
+
+/* Lagrangian internal force, eqs 77-78. */
+static int force_lagrangian(mfs_solver *s, const double *u, double *f)
+{
+  const mfs_plan *pl = s->w->pl;
+  const size_t *ptr = pl->nl->ptr;
+  const int *idx = pl->nl->idx;
+  const double *tab = pl->tab;
+  memset(f, 0, s->n * sizeof *f);
+  for (size_t Q = 0; Q < s->nq; Q++) {
+    double F = 1.0;
+    for (size_t e = ptr[Q]; e < ptr[Q + 1]; e++)
+      F += tab[2 * e + 1] * u[idx[e]];
+    double P = pk1(&s->spec, F);
+    s->F[Q] = F;
+    s->sigma[Q] = P;
+    double wP = s->wq[Q] * P;
+    for (size_t e = ptr[Q]; e < ptr[Q + 1]; e++)
+      f[idx[e]] += tab[2 * e + 1] * wP;
+  }
+  return MFS_OK;
+}
+
+/* Neighbour candidates of the current quadrature points within a + skin. */
+static int search(mfs_solver *s)
+{
+  mfs_solver_work *w = s->w;
+  int st;
+  mfs_grid *g = mfs_grid_alloc(1, s->n, w->x, &w->p->box, w->a + w->skin, &st);
+  if (!g)
+    return st;
+  mfs_nlist *nl = mfs_nlist_build(g, s->nq, w->xq, w->a + w->skin, &st);
+  mfs_grid_free(g);
+  if (!nl)
+    return st;
+  mfs_nlist_free(w->cand);
+  w->cand = nl;
+  size_t maxrow = 1;
+  for (size_t Q = 0; Q < s->nq; Q++) {
+    size_t len = nl->ptr[Q + 1] - nl->ptr[Q];
+    maxrow = len > maxrow ? len : maxrow;
+  }
+  if (maxrow > w->cap) {
+    size_t cap = 2 * maxrow;
+    double *d = realloc(w->d, cap * sizeof *d), *v = d ? realloc(w->vol, cap * sizeof *v) : NULL;
+    if (d)
+      w->d = d;
+    if (v)
+      w->vol = v;
+    double *o = v ? realloc(w->out, 2 * cap * sizeof *o) : NULL;
+    if (o)
+      w->out = o;
+    double *sw = o ? realloc(w->swork, mfs_shape_work_len(1, (int)cap) * sizeof *sw) : NULL;
+    if (sw)
+      w->swork = sw;
+    int *l = sw ? realloc(w->loc, cap * sizeof *l) : NULL;
+    if (!l)
+      return MFS_ENOMEM;
+    w->loc = l;
+    w->cap = cap;
+  }
+  memcpy(w->xb, w->x, s->n * sizeof *w->x);
+  memcpy(w->xqb, w->xq, s->nq * sizeof *w->xq);
+  s->searches++;
+  return MFS_OK;
+}
+
+/* Eulerian internal force, eqs 64-68: shape functions at the current
+ * quadrature points, V_Q = w_Q F_Q, sigma = P. */
+static int force_eulerian(mfs_solver *s, const double *u, double *f)
+{
+  mfs_solver_work *w = s->w;
+  const mfs_plan *pl = w->pl;
+  const mfs_box *box = &w->p->box;
+  const double E = s->spec.modulus, S0 = s->spec.initial_stress;
+  for (size_t I = 0; I < s->n; I++)
+    w->x[I] = s->X[I] + u[I];
+  double moved = 0.0;
+  for (size_t Q = 0; Q < s->nq; Q++) {
+    int node = w->q->node[Q];
+    if (node >= 0) {
+      w->xq[Q] = w->x[node];
+    } else { /* interpolated displacement, Lagrangian table */
+      double uq = 0.0;
+      for (size_t e = pl->nl->ptr[Q]; e < pl->nl->ptr[Q + 1]; e++)
+        uq += pl->tab[2 * e] * u[pl->nl->idx[e]];
+      w->xq[Q] = s->xq0[Q] + uq;
+    }
+    double dq;
+    mfs_box_delta(box, w->xqb + Q, w->xq + Q, &dq);
+    moved = fmax(moved, fabs(dq));
+  }
+  for (size_t I = 0; I < s->n; I++) {
+    double dI;
+    mfs_box_delta(box, w->xb + I, w->x + I, &dI);
+    moved = fmax(moved, fabs(dI));
+  }
+  if (!isfinite(moved))
+    return MFS_EDOMAIN;
+  if (!w->cand || moved > 0.5 * w->skin) {
+    int st = search(s);
+    if (st != MFS_OK)
+      return st;
+  }
+  memset(f, 0, s->n * sizeof *f);
+  const mfs_nlist *cl = w->cand;
+  for (size_t Q = 0; Q < s->nq; Q++) {
+    int nn = 0, self = -1, node = w->q->node[Q];
+    for (size_t e = cl->ptr[Q]; e < cl->ptr[Q + 1]; e++) {
+      int J = cl->idx[e];
+      double dd;
+      mfs_box_delta(box, w->xq + Q, w->x + J, &dd);
+      if (fabs(dd) >= w->a)
+        continue;
+      if (J == node)
+        self = nn;
+      w->d[nn] = dd;
+      w->vol[nn] = w->p->vol[J]; /* reference volume V^0 (see header) */
+      w->loc[nn] = J;
+      nn++;
+    }
+    double rc;
+    int st = pl->shape->eval(&pl->ctx, nn, w->d, w->vol, self, 1, w->out, w->swork, &rc);
+    if (st != MFS_OK)
+      return st;
+    double dudx = 0.0; /* eq. 68 */
+    for (int k = 0; k < nn; k++)
+      dudx += w->out[2 * k + 1] * u[w->loc[k]];
+    if (!(dudx < 1.0))
+      return MFS_EDOMAIN;
+    double F = 1.0 / (1.0 - dudx);
+    double sig = F * (0.5 * E * (F * F - 1.0) + S0);
+    s->F[Q] = F;
+    s->sigma[Q] = sig;
+    double Vs = s->wq[Q] * F * sig;
+    for (int k = 0; k < nn; k++)
+      f[w->loc[k]] += w->out[2 * k + 1] * Vs;
+  }
+  return MFS_OK;
+}
+
+static int force(mfs_solver *s, const double *u, double *f)
+{
+  return s->spec.frame == MFS_FRAME_EULERIAN ? force_eulerian(s, u, f)
+                                              : force_lagrangian(s, u, f);
+}
+
+/* Acceleration at displacement u, time t: m a = f0 - f_int(u); zero at ends
+ * whose displacement is prescribed. */
+static int accel(mfs_solver *s, const double *u, double *a)
+{
+  double *f = s->w->f;
+  int st = force(s, u, f);
+  if (st != MFS_OK)
+    return st;
+  int bad = 0;
+  for (size_t I = 0; I < s->n; I++) {
+    a[I] = s->w->fixed[I] ? 0.0 : (s->w->f0[I] - f[I]) / s->m[I];
+    bad |= !isfinite(a[I]);
+  }
+  return bad ? MFS_EDOMAIN : MFS_OK;
+}
+
+/* Impose the end conditions on u, v at time t. */
+static void impose(mfs_solver *s, double *u, double *v, double t)
+{
+  if (s->spec.periodic)
+    return;
+  size_t end[2] = {0, s->n - 1};
+  for (int k = 0; k < 2; k++) {
+    if (s->spec.bc[k] == MFS_BC_FREE)
+      continue;
+    if (u)
+      u[end[k]] = bc_disp(&s->spec, k, t);
+    if (v)
+      v[end[k]] = bc_vel(&s->spec, k, t);
+  }
+}
+
+/* Largest |eigenvalue| of M^-1 K at u = 0 by power iteration, K v taken as a
+ * difference of internal forces (the equilibration load cancels). */
+static int power_lambda(mfs_solver *s, double *lambda)
+{
+  mfs_solver_work *w = s->w;
+  double *vec = w->u0, *kv = w->v0, *up = w->tu, *f = w->f;
+  size_t n = s->n;
+  unsigned long r = 12345;
+  for (size_t I = 0; I < n; I++) {
+    r = r * 6364136223846793005UL + 1442695040888963407UL;
+    vec[I] = w->fixed[I] ? 0.0 : ((double)(r >> 11) / 9007199254740992.0 - 0.5);
+  }
+  int st = force(s, s->u, w->ku); /* f(0) into ku */
+  if (st != MFS_OK)
+    return st;
+  double lam = 0.0;
+  for (int it = 0; it < 300; it++) {
+    double nv = 0.0;
+    for (size_t I = 0; I < n; I++)
+      nv += vec[I] * vec[I];
+    nv = sqrt(nv);
+    if (!(nv > 0.0))
+      break;
+    double eps = 1e-7 * s->dX / nv;
+    for (size_t I = 0; I < n; I++)
+      up[I] = eps * vec[I];
+    if ((st = force(s, up, f)) != MFS_OK)
+      return st;
+    double nk = 0.0;
+    for (size_t I = 0; I < n; I++) {
+      kv[I] = w->fixed[I] ? 0.0 : (f[I] - w->ku[I]) / (eps * s->m[I]);
+      nk += kv[I] * kv[I];
+    }
+    lam = sqrt(nk) / nv;
+    for (size_t I = 0; I < n; I++) /* normalized: no overflow */
+      vec[I] = kv[I] / (lam > 0.0 ? lam : 1.0);
+  }
+  *lambda = lam;
+  return MFS_OK;
+}
+
+void mfs_solver_free(mfs_solver *s)
+{
+  if (!s)
+    return;
+  mfs_solver_work *w = s->w;
+  if (w) {
+    mfs_plan_free(w->pl);
+    mfs_quad_free(w->q);
+    mfs_particles_free(w->p);
+    mfs_nlist_free(w->cand);
+    free(w->fixed);
+    free(w->d);
+    free(w->vol);
+    free(w->out);
+    free(w->swork);
+    free(w->loc);
+    free(w);
+  }
+  free(s->u);
+  free(s);
+}
+
+mfs_solver *mfs_solver_alloc(const mfs_solver_spec *spec, int *status, size_t *bad)
+{
+  int st = MFS_EINVAL;
+  mfs_solver *s = NULL;
+  mfs_quad_rule rule;
+  if (!spec || spec->n < 3 || !(spec->length > 0.0) || !(spec->density > 0.0) ||
+      !(spec->modulus > 0.0) || !isfinite(spec->initial_stress) || !spec->kernel ||
+      !spec->shape || !(spec->dilation > 0.0) || !spec->quadrature ||
+      mfs_quad_rule_parse(spec->quadrature, &rule) != MFS_OK ||
+      mfs_quad_rule_check(&rule, 1, MFS_LATTICE_LINE) != MFS_OK)
+    goto fail;
+  st = MFS_ENOMEM;
+  s = calloc(1, sizeof *s);
+  if (!s || !(s->w = calloc(1, sizeof *s->w)))
+    goto fail;
+  mfs_solver_work *w = s->w;
+  s->spec = *spec;
+  s->spec.quadrature = NULL; /* not kept: the caller's string */
+  if (!(s->spec.rcond_min > 0.0))
+    s->spec.rcond_min = 1e-12;
+  size_t n = (size_t)spec->n;
+  s->n = n;
+  s->dX = spec->length / (double)(spec->periodic ? n : n - 1);
+  mfs_lattice_spec ls = {.dim = 1,
+                         .lattice = MFS_LATTICE_LINE,
+                         .nx = spec->n,
+                         .ny = 1,
+                         .dx = s->dX,
+                         .gamma = 1.0,
+                         .periodic = spec->periodic,
+                         .cells = rule.cells};
+  if (!(w->p = mfs_lattice_alloc(&ls, &st)))
+    goto fail;
+  if (!(w->q = mfs_quad_alloc(&rule, w->p, &st)))
+    goto fail;
+  mfs_plan_spec ps = {spec->kernel, spec->shape, spec->dilation, 1, s->spec.rcond_min};
+  if (!(w->pl = mfs_plan_alloc(&ps, w->p, w->q, &st, bad)))
+    goto fail;
+  st = MFS_ENOMEM;
+  size_t nq = w->q->n;
+  s->nq = nq;
+  s->X = w->p->x;
+  s->xq0 = w->q->x;
+  s->wq = w->q->w;
+  /* one block: u v a m f f0 u0 v0 ku(4) kv(4) tu x xb (13+... n) + F sigma xq xqb (4 nq) */
+  double *blk = calloc(19 * n + 4 * nq, sizeof *blk);
+  w->fixed = calloc(n, 1);
+  if (!blk || !w->fixed) {
+    free(blk);
+    goto fail;
+  }
+  s->u = blk;
+  s->v = blk + n;
+  s->a = blk + 2 * n;
+  s->m = blk + 3 * n;
+  w->f = NULL; /* part of blk: freed with s->u */
+  double *f = blk + 4 * n;
+  w->f0 = blk + 5 * n;
+  w->u0 = blk + 6 * n;
+  w->v0 = blk + 7 * n;
+  w->ku = blk + 8 * n;
+  w->kv = blk + 12 * n;
+  w->tu = blk + 16 * n;
+  w->x = blk + 17 * n;
+  w->xb = blk + 18 * n;
+  s->F = blk + 19 * n;
+  s->sigma = s->F + nq;
+  w->xq = s->sigma + nq;
+  w->xqb = w->xq + nq;
+  w->f = f;
+  for (size_t I = 0; I < n; I++)
+    s->m[I] = spec->density * w->p->vol[I]; /* eq. 51 */
+  if (!spec->periodic) {
+    w->fixed[0] = spec->bc[0] != MFS_BC_FREE;
+    w->fixed[n - 1] = spec->bc[1] != MFS_BC_FREE;
+  }
+  w->a = spec->dilation * s->dX;
+  w->skin = (spec->skin > 0.0 ? spec->skin : 0.5) * s->dX;
+  if (spec->periodic && !(spec->length > 2.0 * (w->a + w->skin))) {
+    st = MFS_ETOOSMALL;
+    goto fail;
+  }
+  for (size_t I = 0; I < n; I++)
+    w->x[I] = s->X[I];
+  for (size_t Q = 0; Q < nq; Q++)
+    w->xq[Q] = s->xq0[Q];
+  /* equilibration load: f0 = f_int(0) */
+  if (spec->equilibrate) {
+    st = force(s, s->u, w->f0);
+    if (st != MFS_OK)
+      goto fail;
+  }
+  /* stable step: element bound with Cbar = E + S0 (eqs 81, 132) and power iteration */
+  mfs_material mat = {MFS_PHYS_SCALAR, spec->modulus + spec->initial_stress, 0.0,
+                      spec->density};
+  mfs_bound_result br;
+  if (mat.modulus > 0.0 && mfs_bound_plan(w->pl, &mat, w->fixed, &br) == MFS_OK) {
+    s->lambda_bound = br.lambda;
+    s->negative_phi = br.negative_phi;
+  }
+  if ((st = power_lambda(s, &s->lambda_power)) != MFS_OK)
+    goto fail;
+  double lam = fmax(s->lambda_bound, s->lambda_power);
+  if (!(lam > 0.0) || !isfinite(lam)) {
+    st = MFS_EDOMAIN;
+    goto fail;
+  }
+  s->dt_crit = 2.0 / sqrt(lam); /* eq. 120 */
+  s->dt = 0.9 * s->dt_crit;
+  if ((st = mfs_solver_reset(s)) != MFS_OK)
+    goto fail;
+  *status = MFS_OK;
+  return s;
+fail:
+  mfs_solver_free(s);
+  *status = st;
+  return NULL;
+}
+
+int mfs_solver_set_state(mfs_solver *s, const double *u, const double *v)
+{
+  for (size_t I = 0; I < s->n; I++) {
+    s->u[I] = u ? u[I] : 0.0;
+    s->v[I] = v ? v[I] : 0.0;
+  }
+  impose(s, s->u, s->v, s->t);
+  return accel(s, s->u, s->a);
+}
+
+int mfs_solver_reset(mfs_solver *s)
+{
+  s->t = 0.0;
+  s->steps = 0;
+  return mfs_solver_set_state(s, NULL, NULL);
+}
+
+int mfs_solver_set_dt(mfs_solver *s, double dt, int force_it)
+{
+  if (!(dt > 0.0) || !isfinite(dt) || (dt > s->dt_crit && !force_it))
+    return MFS_EINVAL;
+  s->dt = dt;
+  return MFS_OK;
+}
+
+/* Central difference, eq. 120, in kick-drift-kick form. */
+static int step_leapfrog(mfs_solver *s)
+{
+  double dt = s->dt, t1 = s->t + dt;
+  for (size_t I = 0; I < s->n; I++) {
+    s->v[I] += 0.5 * dt * s->a[I];
+    s->u[I] += dt * s->v[I];
+  }
+  impose(s, s->u, NULL, t1);
+  int st = accel(s, s->u, s->a);
+  if (st != MFS_OK)
+    return st;
+  for (size_t I = 0; I < s->n; I++)
+    s->v[I] += 0.5 * dt * s->a[I];
+  impose(s, NULL, s->v, t1);
+  return MFS_OK;
+}
+
+/* Explicit Runge-Kutta for y' = (v, a(u)): Euler (1 stage), midpoint (2), classical (4). */
+static int step_rk(mfs_solver *s, int stages)
+{
+  static const double b1[1] = {1}, b2[2] = {0, 1}, b4[4] = {1 / 6., 1 / 3., 1 / 3., 1 / 6.};
+  const double *b = stages == 1 ? b1 : stages == 2 ? b2 : b4;
+  mfs_solver_work *w = s->w;
+  size_t n = s->n;
+  double dt = s->dt;
+  memcpy(w->u0, s->u, n * sizeof *s->u);
+  memcpy(w->v0, s->v, n * sizeof *s->v);
+  for (int k = 0; k < stages; k++) {
+    double *ku = w->ku + k * n, *kv = w->kv + k * n;
+    if (k == 0) {
+      memcpy(ku, s->v, n * sizeof *ku);
+      memcpy(kv, s->a, n * sizeof *kv);
+      continue;
+    }
+    double ck = stages == 4 && k == 3 ? 1.0 : 0.5; /* a_{k,k-1} = c_k */
+    double tk = s->t + ck * dt;
+    for (size_t I = 0; I < n; I++) {
+      w->tu[I] = w->u0[I] + ck * dt * w->ku[(k - 1) * n + I];
+      ku[I] = w->v0[I] + ck * dt * w->kv[(k - 1) * n + I];
+    }
+    impose(s, w->tu, ku, tk);
+    int st = accel(s, w->tu, kv);
+    if (st != MFS_OK)
+      return st;
+  }
+  for (size_t I = 0; I < n; I++) {
+    double du = 0.0, dv = 0.0;
+    for (int k = 0; k < stages; k++) {
+      du += b[k] * w->ku[k * n + I];
+      dv += b[k] * w->kv[k * n + I];
+    }
+    s->u[I] = w->u0[I] + dt * du;
+    s->v[I] = w->v0[I] + dt * dv;
+  }
+  impose(s, s->u, s->v, s->t + dt);
+  return accel(s, s->u, s->a);
+}
+
+int mfs_solver_step(mfs_solver *s, mfs_scheme scheme)
+{
+  int st;
+  switch (scheme) {
+  case MFS_SCHEME_LEAPFROG:
+    st = step_leapfrog(s);
+    break;
+  case MFS_SCHEME_EULER:
+    st = step_rk(s, 1);
+    break;
+  case MFS_SCHEME_RK2:
+    st = step_rk(s, 2);
+    break;
+  case MFS_SCHEME_RK4:
+    st = step_rk(s, 4);
+    break;
+  default:
+    return MFS_EINVAL;
+  }
+  if (st != MFS_OK)
+    return st;
+  s->t += s->dt;
+  s->steps++;
+  for (size_t I = 0; I < s->n; I++)
+    if (!isfinite(s->u[I]) || !isfinite(s->v[I]))
+      return MFS_EDOMAIN;
+  return MFS_OK;
+}
+
+int mfs_solver_fields(mfs_solver *s)
+{
+  return force(s, s->u, s->w->f);
+}
+
+int mfs_solver_energy(mfs_solver *s, double *kinetic, double *potential)
+{
+  int st = mfs_solver_fields(s);
+  if (st != MFS_OK)
+    return st;
+  double k = 0.0, p = 0.0, E = s->spec.modulus, S0 = s->spec.initial_stress;
+  for (size_t I = 0; I < s->n; I++)
+    k += 0.5 * s->m[I] * s->v[I] * s->v[I];
+  for (size_t Q = 0; Q < s->nq; Q++) {
+    double g = s->F[Q] * s->F[Q] - 1.0;
+    p += s->wq[Q] * (0.5 * S0 * g + 0.125 * E * g * g);
+  }
+  for (size_t I = 0; I < s->n; I++)
+    p -= s->w->f0[I] * s->u[I];
+  *kinetic = k;
+  *potential = p;
+  return MFS_OK;
+}
+
+size_t mfs_solver_nearest(const mfs_solver *s, double X)
+{
+  double r = floor(X / s->dX + 0.5);
+  if (r < 0)
+    r = 0;
+  if (r > (double)(s->n - 1))
+    r = (double)(s->n - 1);
+  return (size_t)r;
+}

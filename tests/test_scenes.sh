@@ -1,0 +1,105 @@
+#!/usr/bin/env bash
+# Scene regression tests of `mfstab run`: the time-domain runs show what the
+# dispersion analysis predicts.  Usage: test_scenes.sh /path/to/mfstab /path/to/analysis/scenes
+# Prints one line per check and "test_scenes: N passed, M failed"; exit 1 on failure.
+set -u
+MFSTAB=${1:?usage: test_scenes.sh MFSTAB SCENES_DIR}
+SCENES=${2:?usage: test_scenes.sh MFSTAB SCENES_DIR}
+TMP=$(mktemp -d)
+trap 'rm -rf "$TMP"' EXIT
+pass=0
+fail=0
+ok() { pass=$((pass + 1)); echo "ok   $*"; }
+bad() { fail=$((fail + 1)); echo "FAIL $*"; }
+# check DESCRIPTION AWK-CONDITION: the condition is evaluated by awk (1 = pass)
+check() {
+  if [ "$(awk "BEGIN{print ($2) ? 1 : 0}")" = 1 ]; then ok "$1"; else bad "$1"; fi
+}
+# max of |column k| over a CSV
+colmax() { awk -F, -v k="$2" 'NR>1{a=$k<0?-$k:$k; if(a>m)m=a} END{printf "%.6g", m+0}' "$1"; }
+
+# ---------------------------------------------------------------- rod-tensile
+# Paper 003 section 4.1.2 (Figs 6-7): sbar = 0.1, v0 = 40 m/s, quartic D = 1.5.
+R=$SCENES/rod-tensile.ini
+run_rod() { # name, --set args...
+  local name=$1; shift
+  local args=()
+  for a in "$@"; do args+=(--set "$a"); done
+  "$MFSTAB" run "$R" "${args[@]}" -o "$TMP/$name.csv"
+}
+if run_rod lag discretization.frame=lagrangian; then
+  m=$(colmax "$TMP/lag.csv" 2)
+  check "rod-tensile Lagrangian MLS nodal: max|v_center| = $m <= 60 m/s (1.5 v0), 50 us" "$m <= 60"
+else bad "rod-tensile Lagrangian run failed"; fi
+if run_rod lagstress discretization.frame=lagrangian discretization.quadrature=stress; then
+  m=$(colmax "$TMP/lagstress.csv" 2)
+  check "rod-tensile Lagrangian MLS stress points: max|v_center| = $m <= 60 m/s" "$m <= 60"
+else bad "rod-tensile Lagrangian stress-point run failed"; fi
+# Eulerian kernel with the eq.-71 kernel motion (sph: phi_I = V_I W(x - x_I)):
+# tensile instability, max |v| beyond 5 v0 within 10 us (Fig. 6a: ~10x).
+if run_rod eulsph discretization.frame=eulerian discretization.shape=sph time.end=1e-5; then
+  m=$(colmax "$TMP/eulsph.csv" 4)
+  check "rod-tensile Eulerian SPH nodal: max|v| = $m >= 200 m/s (5 v0) by 10 us (tensile instability)" "$m >= 200"
+else bad "rod-tensile Eulerian SPH run failed"; fi
+# Exact Eulerian MLS at D = 1.5: three neighbours, the linear MLS gradient at a
+# particle is the kernel-independent central difference, the sawtooth is
+# neutral and the run stays bounded, unlike eq. 74 (docs/errata.md E2).
+if run_rod eulmls discretization.frame=eulerian; then
+  m=$(colmax "$TMP/eulmls.csv" 2)
+  check "rod-tensile Eulerian exact MLS nodal D=1.5: max|v_center| = $m <= 60 m/s (no growth; eq. 74 predicts growth 0.829 c/dx)" "$m <= 60"
+else bad "rod-tensile Eulerian MLS run failed"; fi
+# Eulerian stress points: the dispersion analysis classifies D = 1.5, sbar = 0.1 as stable.
+cls=$("$MFSTAB" dispersion --kernel quartic --dilation 1.5 --frame eulerian --quadrature stress \
+      --stress 0.1 --classify | awk -F, 'NR==2{print $NF}')
+check "dispersion: Eulerian stress points quartic D=1.5 sbar=0.1 classified '$cls' (want stable)" "\"$cls\" == \"stable\""
+if run_rod eulstress discretization.frame=eulerian discretization.quadrature=stress; then
+  m=$(colmax "$TMP/eulstress.csv" 2)
+  check "rod-tensile Eulerian MLS stress points: max|v_center| = $m <= 60 m/s (stable, as predicted)" "$m <= 60"
+else bad "rod-tensile Eulerian stress-point run failed"; fi
+
+# ---------------------------------------------------------------- rod-growth
+# Growth rate of the sawtooth vs the dispersion module's largest Im(omega).
+G=$SCENES/rod-growth.ini
+rho=2450; E=10e9; dx=0.001
+if "$MFSTAB" run "$G" -o "$TMP/growth.csv"; then
+  # least-squares slope of ln(mode_amp) over t in [4, 11.5] us (amplitude 1e-13 .. 1e-8 m)
+  meas=$(awk -F, 'NR>1 && $1>=4e-6 && $1<=1.15e-5 {x=$1; y=log($2); n++; sx+=x; sy+=y; sxx+=x*x; sxy+=x*y}
+                  END{printf "%.8g", (n*sxy-sx*sy)/(n*sxx-sx*sx)}' "$TMP/growth.csv")
+  gbar=$("$MFSTAB" dispersion --kernel quartic --dilation 1.5 --shape sph --frame eulerian \
+         --quadrature nodal --stress 0.1 --classify | awk -F, 'NR==2{print $16}')
+  pred=$(awk -v g="$gbar" -v E=$E -v r=$rho -v dx=$dx 'BEGIN{printf "%.8g", g*sqrt(E/r)/dx}')
+  echo "     rod-growth (Eulerian SPH nodal, quartic D=1.5, sbar=0.1): measured gamma = $meas 1/s, predicted Im(omega) = $pred 1/s (growth $gbar c/dx)"
+  check "rod-growth: measured growth rate $meas within 2% of the dispersion prediction $pred" \
+        "($meas/$pred-1)^2 <= 0.02^2"
+else bad "rod-growth run failed"; fi
+# The same rod with the exact Eulerian MLS function: no growth (see the scene comment).
+if "$MFSTAB" run "$G" --set discretization.shape=mls -o "$TMP/growthmls.csv"; then
+  a0=$(awk -F, 'NR==2{print $2}' "$TMP/growthmls.csv"); a1=$(awk -F, 'END{print $2}' "$TMP/growthmls.csv")
+  check "rod-growth exact MLS: sawtooth amplitude $a0 -> $a1 m in 12 us, no growth beyond 10x (eq. 74 would give e^20)" "$a1 <= 10*$a0"
+else bad "rod-growth MLS run failed"; fi
+
+# ---------------------------------------------------------------- errors (exit 2, file:line)
+expect2() { # description, pattern, args...
+  local d=$1 pat=$2; shift 2
+  local err rc
+  err=$("$MFSTAB" run "$@" -o "$TMP/err.csv" 2>&1 >/dev/null); rc=$?
+  if [ $rc -eq 2 ] && grep -q -- "$pat" <<<"$err" && [ ! -e "$TMP/err.csv" ]; then ok "$d: $err"
+  else bad "$d: rc=$rc, message '$err' (want exit 2 matching '$pat')"; fi
+}
+sed 's/^density = 2450/density = -1/' "$R" > "$TMP/neg.ini"
+ln=$(grep -n '^density' "$R" | cut -d: -f1)
+expect2 "negative density" "neg.ini:$ln: \[material\] density = -1: must be > 0" "$TMP/neg.ini"
+printf '[model]\nnodes = 41\nlength = 0.04\nwidth = 3\n' > "$TMP/key.ini"
+expect2 "unknown key" "key.ini:4: \[model\] width = 3: unknown key" "$TMP/key.ini"
+printf '[model]\nnodes = 41\n[modle]\nlength = 0.04\n' > "$TMP/sec.ini"
+expect2 "unknown section" "sec.ini:4: \[modle\] length = 0.04: unknown section" "$TMP/sec.ini"
+grep -v '^modulus' "$R" > "$TMP/miss.ini"
+expect2 "missing required key" "\[material\] modulus: missing" "$TMP/miss.ini"
+expect2 "step above the stability limit" "time.dt=1e-6: above the central-difference stability limit" "$R" --set time.dt=1e-6
+expect2 "bad --set value" "\-\-set discretization.frame=sideways" "$R" --set discretization.frame=sideways
+if "$MFSTAB" run "$R" --set time.dt=1e-6 --set time.force=1 --set time.end=2e-5 -o "$TMP/forced.csv" 2>/dev/null \
+   || [ $? -eq 1 ]; then ok "forced step above the limit is accepted (exit 0 or 1 when it blows up, never 2)"
+else bad "forced step refused"; fi
+
+echo "test_scenes: $pass passed, $fail failed"
+[ $fail -eq 0 ]

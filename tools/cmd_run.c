@@ -1,0 +1,224 @@
+/* mfstab run: explicit time integration of a scene (tools/scene.h) with the
+ * reference solver (lib/mfs_solver.h); writes a CSV time series of the
+ * probes the scene names. */
+#include <complex.h>
+#undef I
+#include <gsl/gsl_rng.h>
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+#include <unistd.h>
+
+#include "cli.h"
+#include "commands.h"
+#include "scene.h"
+
+static const char help[] =
+  "usage: mfstab run SCENE.ini [--set SECTION.KEY=VALUE ...] [-o FILE]\n"
+  "Explicit time integration of a 1D rod of particles (lib/mfs_solver.h) described by an INI\n"
+  "scene file; writes CSV columns t followed by the probes of [output] probes.\n"
+  "Sections and keys (defaults in parentheses; * required):\n"
+  "  [model]          nodes*, length* (m), periodic (0)\n"
+  "  [material]       density* (kg/m^3), modulus* E (Pa), initial_stress S0 (0 Pa)\n"
+  "                   S = E (F^2-1)/2 + S0, P = F S\n"
+  "  [discretization] kernel (quartic), dilation D (2), shape (mls; sph shepard kb rl),\n"
+  "                   frame (lagrangian | eulerian), quadrature (nodal | stress | gaussN),\n"
+  "                   equilibrate (1: the internal force at u = 0 is a constant load),\n"
+  "                   skin (0.5: Eulerian neighbour-search skin in dX)\n"
+  "  [initial]        center_velocity (0 m/s, the particle nearest L/2), perturbation\n"
+  "                   (0: random displacement in [-p, p] dX), seed (1), pulse_amplitude,\n"
+  "                   pulse_alpha, pulse_center (v = A exp(-alpha (X - c)^2))\n"
+  "  [boundary]       left, right (fixed | free | velocity; default fixed), left_velocity,\n"
+  "                   right_velocity (m/s), left_until, right_until (s; then 0)\n"
+  "  [time]           end* (s), dt (s) or safety (0.9: dt = safety * dt_crit), scheme\n"
+  "                   (leapfrog | euler | rk2 | rk4), force (0: a dt above the central-\n"
+  "                   difference limit 2/sqrt(lambda_max) is refused)\n"
+  "  [output]         probes* (v_center, u_center, kinetic_energy, potential_energy,\n"
+  "                   total_energy, sigma_end, sigma_center, mode_amp, max_v), every (1),\n"
+  "                   mode (1: kappa dX/pi of mode_amp = (2/n) |sum_I u_I exp(-i kappa X_I)|)\n"
+  "options:\n"
+  "  --set SECTION.KEY=VALUE   override a key of the scene (repeatable)\n"
+  "  -o FILE                   output file (default: standard output)\n"
+  "Exit codes: 0 success, 2 bad input (file:line: [section] key = value: why), 1 numerical\n"
+  "failure (e.g. a non-finite value or an inverted deformation).\n";
+
+static void die_status(const scene *sc, int st, size_t bad, double t)
+{
+  if (st == MFS_ESINGULAR)
+    scene_key_error(sc, "discretization", "dilation",
+                    "singular moment matrix at quadrature point %zu%s; use a larger dilation",
+                    bad, t > 0 ? " during the run" : "");
+  if (st == MFS_ETOOSMALL)
+    scene_key_error(sc, "model", "nodes", "too few nodes for the support radius");
+  if (st == MFS_EINVAL)
+    cli_die(2, "%s: invalid combination of keys: %s", sc->path, mfs_strerror(st));
+  cli_die(1, "%s: at t = %g s: %s", sc->path, t, mfs_strerror(st));
+}
+
+static void put(FILE *f, double v)
+{
+  char b[40];
+  cli_fmt(b, sizeof b, v);
+  fputc(',', f);
+  fputs(b, f);
+}
+
+int cmd_run(int argc, char **argv)
+{
+  const char *path = NULL, *outpath = NULL;
+  const char *sets[256];
+  int nsets = 0;
+  for (int i = 1; i < argc; i++) {
+    if (!strcmp(argv[i], "--help") || !strcmp(argv[i], "-h")) {
+      fputs(help, stdout);
+      return 0;
+    } else if (!strcmp(argv[i], "--set") || !strcmp(argv[i], "-o")) {
+      if (i + 1 >= argc)
+        cli_die(2, "%s: missing value", argv[i]);
+      if (!strcmp(argv[i], "-o")) {
+        outpath = argv[++i];
+      } else {
+        if (nsets == 256)
+          cli_die(2, "--set: at most 256");
+        sets[nsets++] = argv[++i];
+      }
+    } else if (argv[i][0] == '-' && argv[i][1]) {
+      cli_die(2, "%s: unknown option; allowed: --set, -o, --help", argv[i]);
+    } else if (!path) {
+      path = argv[i];
+    } else {
+      cli_die(2, "'%s': only one scene file is allowed", argv[i]);
+    }
+  }
+  if (!path)
+    cli_die(2, "missing the scene file; usage: mfstab run SCENE.ini [--set S.K=V] [-o FILE]");
+  scene sc;
+  scene_load(&sc, path);
+  for (int i = 0; i < nsets; i++)
+    scene_set(&sc, sets[i]);
+  scene_finish(&sc);
+
+  int st;
+  size_t bad = 0;
+  mfs_solver *s = mfs_solver_alloc(&sc.spec, &st, &bad);
+  if (!s)
+    die_status(&sc, st, bad, 0.0);
+  if (sc.have_dt) {
+    if (mfs_solver_set_dt(s, sc.dt, sc.force) != MFS_OK) {
+      double dcrit = s->dt_crit;
+      mfs_solver_free(s);
+      scene_key_error(&sc, "time", "dt",
+                      "above the central-difference stability limit %.6g s (2/sqrt(lambda_max), "
+                      "eqs 120, 132); lower it or set [time] force = 1",
+                      dcrit);
+    }
+  } else {
+    mfs_solver_set_dt(s, sc.safety * s->dt_crit, 1);
+  }
+
+  /* initial conditions */
+  size_t n = s->n;
+  double *u0 = calloc(n, sizeof *u0), *v0 = calloc(n, sizeof *v0);
+  if (!u0 || !v0)
+    cli_die(1, "out of memory");
+  if (sc.perturbation > 0.0) {
+    gsl_rng *r = gsl_rng_alloc(gsl_rng_mt19937);
+    if (!r)
+      cli_die(1, "out of memory");
+    gsl_rng_set(r, sc.seed);
+    for (size_t I = 0; I < n; I++)
+      u0[I] = sc.perturbation * s->dX * (2.0 * gsl_rng_uniform(r) - 1.0);
+    gsl_rng_free(r);
+  }
+  if (sc.pulse_amplitude != 0.0)
+    for (size_t I = 0; I < n; I++) {
+      double d = s->X[I] - sc.pulse_center;
+      v0[I] = sc.pulse_amplitude * exp(-sc.pulse_alpha * d * d);
+    }
+  size_t ic = mfs_solver_nearest(s, 0.5 * sc.spec.length);
+  v0[ic] += sc.center_velocity;
+  if ((st = mfs_solver_set_state(s, u0, v0)) != MFS_OK)
+    die_status(&sc, st, 0, 0.0);
+  free(u0);
+  free(v0);
+
+  /* what the probes need */
+  int need_energy = 0, need_fields = 0;
+  size_t qend = 0, qcen = 0;
+  for (int p = 0; p < sc.nprobes; p++) {
+    need_energy |= sc.probe[p] == PROBE_KINETIC || sc.probe[p] == PROBE_POTENTIAL ||
+                   sc.probe[p] == PROBE_TOTAL;
+    need_fields |= sc.probe[p] == PROBE_SIGMA_END || sc.probe[p] == PROBE_SIGMA_CENTER;
+  }
+  for (size_t Q = 0; Q < s->nq; Q++) {
+    if (fabs(s->xq0[Q] - sc.spec.length) < fabs(s->xq0[qend] - sc.spec.length))
+      qend = Q;
+    if (fabs(s->xq0[Q] - 0.5 * sc.spec.length) < fabs(s->xq0[qcen] - 0.5 * sc.spec.length))
+      qcen = Q;
+  }
+
+  cli_out out;
+  cli_out_open(&out, outpath);
+  fputs("t", out.f);
+  for (int p = 0; p < sc.nprobes; p++)
+    fprintf(out.f, ",%s", scene_probe_names[sc.probe[p]]);
+  fputc('\n', out.f);
+
+  long nsteps = (long)ceil(sc.end / s->dt * (1.0 - 1e-12));
+  int tty = isatty(STDERR_FILENO);
+  int shown = -1;
+  for (long k = 0;; k++) {
+    if (k % sc.every == 0 || k == nsteps) {
+      double kin = 0, pot = 0;
+      if (need_energy && (st = mfs_solver_energy(s, &kin, &pot)) != MFS_OK)
+        die_status(&sc, st, 0, s->t);
+      if (need_fields && !need_energy && (st = mfs_solver_fields(s)) != MFS_OK)
+        die_status(&sc, st, 0, s->t);
+      char b[40];
+      cli_fmt(b, sizeof b, s->t);
+      fputs(b, out.f);
+      for (int p = 0; p < sc.nprobes; p++) {
+        double val = 0.0;
+        switch (sc.probe[p]) {
+        case PROBE_V_CENTER: val = s->v[ic]; break;
+        case PROBE_U_CENTER: val = s->u[ic]; break;
+        case PROBE_KINETIC: val = kin; break;
+        case PROBE_POTENTIAL: val = pot; break;
+        case PROBE_TOTAL: val = kin + pot; break;
+        case PROBE_SIGMA_END: val = s->sigma[qend]; break;
+        case PROBE_SIGMA_CENTER: val = s->sigma[qcen]; break;
+        case PROBE_MODE_AMP: {
+          double complex z = 0;
+          for (size_t I = 0; I < n; I++)
+            z += s->u[I] * cexp(-1.0 * _Complex_I * M_PI * sc.mode * (double)I);
+          val = 2.0 * cabs(z) / (double)n;
+          break;
+        }
+        case PROBE_MAX_V:
+          for (size_t I = 0; I < n; I++)
+            val = fmax(val, fabs(s->v[I]));
+          break;
+        }
+        put(out.f, val);
+      }
+      fputc('\n', out.f);
+    }
+    if (k == nsteps)
+      break;
+    if ((st = mfs_solver_step(s, sc.scheme)) != MFS_OK)
+      die_status(&sc, st, 0, s->t);
+    if (tty) {
+      int pc = (int)(100 * (k + 1) / nsteps);
+      if (pc != shown) {
+        shown = pc;
+        fprintf(stderr, "\r[%-50.*s] %3d%%", pc / 2,
+                "##################################################", pc);
+        if (k + 1 == nsteps)
+          fputc('\n', stderr);
+      }
+    }
+  }
+  mfs_solver_free(s);
+  cli_out_commit(&out);
+  return 0;
+}

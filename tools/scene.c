@@ -1,0 +1,412 @@
+/* Scene files of `mfstab run` (see scene.h).  One table lists every key: its
+ * section, name, type and constraint; the parser, the --set overrides and the
+ * error messages all come from it. */
+#include "scene.h"
+
+#include <errno.h>
+#include <math.h>
+#include <stdarg.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include <ini.h>
+
+#include "cli.h"
+
+const char *const scene_probe_names[PROBE_COUNT] = {
+  "v_center", "u_center", "kinetic_energy", "potential_energy", "total_energy",
+  "sigma_end", "sigma_center", "mode_amp", "max_v"};
+
+typedef enum { K_INT, K_POS, K_NONNEG, K_REAL, K_BOOL, K_WORD } key_type;
+
+typedef enum {
+  /* [model] */ NODES, LENGTH, PERIODIC,
+  /* [material] */ DENSITY, MODULUS, INITIAL_STRESS,
+  /* [discretization] */ KERNEL, DILATION, SHAPE, FRAME, QUADRATURE, EQUILIBRATE, SKIN,
+  /* [initial] */ CENTER_VELOCITY, PERTURBATION, SEED, PULSE_AMPLITUDE, PULSE_ALPHA, PULSE_CENTER,
+  /* [boundary] */ LEFT, RIGHT, LEFT_VELOCITY, RIGHT_VELOCITY, LEFT_UNTIL, RIGHT_UNTIL,
+  /* [time] */ END, DT, SAFETY, SCHEME, FORCE,
+  /* [output] */ PROBES, EVERY, MODE,
+  NKEYS
+} key_id;
+
+typedef struct {
+  const char *section, *name;
+  key_type type;
+  int required;
+} key_def;
+
+static const key_def keys[NKEYS] = {
+  [NODES] = {"model", "nodes", K_INT, 1},
+  [LENGTH] = {"model", "length", K_POS, 1},
+  [PERIODIC] = {"model", "periodic", K_BOOL, 0},
+  [DENSITY] = {"material", "density", K_POS, 1},
+  [MODULUS] = {"material", "modulus", K_POS, 1},
+  [INITIAL_STRESS] = {"material", "initial_stress", K_REAL, 0},
+  [KERNEL] = {"discretization", "kernel", K_WORD, 0},
+  [DILATION] = {"discretization", "dilation", K_POS, 0},
+  [SHAPE] = {"discretization", "shape", K_WORD, 0},
+  [FRAME] = {"discretization", "frame", K_WORD, 0},
+  [QUADRATURE] = {"discretization", "quadrature", K_WORD, 0},
+  [EQUILIBRATE] = {"discretization", "equilibrate", K_BOOL, 0},
+  [SKIN] = {"discretization", "skin", K_POS, 0},
+  [CENTER_VELOCITY] = {"initial", "center_velocity", K_REAL, 0},
+  [PERTURBATION] = {"initial", "perturbation", K_NONNEG, 0},
+  [SEED] = {"initial", "seed", K_INT, 0},
+  [PULSE_AMPLITUDE] = {"initial", "pulse_amplitude", K_REAL, 0},
+  [PULSE_ALPHA] = {"initial", "pulse_alpha", K_POS, 0},
+  [PULSE_CENTER] = {"initial", "pulse_center", K_REAL, 0},
+  [LEFT] = {"boundary", "left", K_WORD, 0},
+  [RIGHT] = {"boundary", "right", K_WORD, 0},
+  [LEFT_VELOCITY] = {"boundary", "left_velocity", K_REAL, 0},
+  [RIGHT_VELOCITY] = {"boundary", "right_velocity", K_REAL, 0},
+  [LEFT_UNTIL] = {"boundary", "left_until", K_NONNEG, 0},
+  [RIGHT_UNTIL] = {"boundary", "right_until", K_NONNEG, 0},
+  [END] = {"time", "end", K_POS, 1},
+  [DT] = {"time", "dt", K_POS, 0},
+  [SAFETY] = {"time", "safety", K_POS, 0},
+  [SCHEME] = {"time", "scheme", K_WORD, 0},
+  [FORCE] = {"time", "force", K_BOOL, 0},
+  [PROBES] = {"output", "probes", K_WORD, 1},
+  [EVERY] = {"output", "every", K_INT, 0},
+  [MODE] = {"output", "mode", K_POS, 0},
+};
+
+/* Where the value being parsed came from, for messages. */
+typedef struct {
+  scene *sc;
+  int line;      /* current line of the file, 0 for --set */
+  FILE *f;
+} parse_ctx;
+
+static char set_origin[512];
+
+static void vkey_error(const scene *sc, int line, const char *section, const char *key,
+                       const char *value, const char *fmt, va_list ap)
+{
+  char msg[512];
+  vsnprintf(msg, sizeof msg, fmt, ap);
+  if (line > 0)
+    cli_die(2, "%s:%d: [%s] %s = %s: %s", sc->path, line, section, key, value, msg);
+  if (value)
+    cli_die(2, "--set %s.%s=%s: %s", section, key, value, msg);
+  cli_die(2, "%s: [%s] %s: %s", sc->path, section, key, msg);
+}
+
+static _Noreturn void key_error(const scene *sc, int line, const char *section, const char *key,
+                                const char *value, const char *fmt, ...)
+{
+  va_list ap;
+  va_start(ap, fmt);
+  vkey_error(sc, line, section, key, value, fmt, ap);
+  va_end(ap);
+  exit(2);
+}
+
+/* Values as given, to repeat them in later (cross-key) errors. */
+static char values[NKEYS][128];
+
+_Noreturn void scene_key_error(const scene *sc, const char *section, const char *key,
+                               const char *fmt, ...)
+{
+  int id = 0;
+  for (; id < NKEYS; id++)
+    if (strcmp(keys[id].section, section) == 0 && strcmp(keys[id].name, key) == 0)
+      break;
+  va_list ap;
+  va_start(ap, fmt);
+  if (id < NKEYS && values[id][0])
+    vkey_error(sc, sc->line[id], section, key, values[id], fmt, ap);
+  else
+    vkey_error(sc, 0, section, key, NULL, fmt, ap);
+  va_end(ap);
+  exit(2);
+}
+
+static mfs_bc parse_bc(const scene *sc, int line, key_id id, const char *v)
+{
+  if (strcmp(v, "fixed") == 0)
+    return MFS_BC_FIXED;
+  if (strcmp(v, "free") == 0)
+    return MFS_BC_FREE;
+  if (strcmp(v, "velocity") == 0)
+    return MFS_BC_VELOCITY;
+  key_error(sc, line, keys[id].section, keys[id].name, v, "allowed: fixed, free, velocity");
+}
+
+static void set_key(scene *sc, int line, key_id id, const char *value)
+{
+  const key_def *k = &keys[id];
+  double x = 0.0;
+  long l = 0;
+  char *end;
+  errno = 0;
+  switch (k->type) {
+  case K_INT:
+    l = strtol(value, &end, 10);
+    if (end == value || *end || errno == ERANGE)
+      key_error(sc, line, k->section, k->name, value, "not an integer");
+    break;
+  case K_POS:
+  case K_NONNEG:
+  case K_REAL:
+    x = strtod(value, &end);
+    if (end == value || *end || errno == ERANGE || !isfinite(x))
+      key_error(sc, line, k->section, k->name, value, "not a number");
+    if (k->type == K_POS && !(x > 0.0))
+      key_error(sc, line, k->section, k->name, value, "must be > 0");
+    if (k->type == K_NONNEG && !(x >= 0.0))
+      key_error(sc, line, k->section, k->name, value, "must be >= 0");
+    break;
+  case K_BOOL:
+    if (!strcmp(value, "1") || !strcmp(value, "true") || !strcmp(value, "yes"))
+      l = 1;
+    else if (!strcmp(value, "0") || !strcmp(value, "false") || !strcmp(value, "no"))
+      l = 0;
+    else
+      key_error(sc, line, k->section, k->name, value, "allowed: 0, 1, true, false, yes, no");
+    break;
+  case K_WORD:
+    break;
+  }
+  mfs_solver_spec *sp = &sc->spec;
+  switch (id) {
+  case NODES:
+    if (l < 3 || l > 100000000)
+      key_error(sc, line, k->section, k->name, value, "allowed 3 to 100000000");
+    sp->n = (int)l;
+    break;
+  case LENGTH: sp->length = x; break;
+  case PERIODIC: sp->periodic = (int)l; break;
+  case DENSITY: sp->density = x; break;
+  case MODULUS: sp->modulus = x; break;
+  case INITIAL_STRESS: sp->initial_stress = x; break;
+  case KERNEL:
+    if (!(sp->kernel = mfs_kernel_find(value)))
+      key_error(sc, line, k->section, k->name, value,
+                "unknown kernel; allowed: cubic, quartic, wendland2, quintic");
+    break;
+  case DILATION: sp->dilation = x; break;
+  case SHAPE:
+    if (!(sp->shape = mfs_shape_find(value)))
+      key_error(sc, line, k->section, k->name, value,
+                "unknown shape function; allowed: mls, sph, shepard, kb, rl");
+    break;
+  case FRAME:
+    if (!strcmp(value, "eulerian"))
+      sp->frame = MFS_FRAME_EULERIAN;
+    else if (!strcmp(value, "lagrangian"))
+      sp->frame = MFS_FRAME_LAGRANGIAN;
+    else
+      key_error(sc, line, k->section, k->name, value, "allowed: eulerian, lagrangian");
+    break;
+  case QUADRATURE: {
+    mfs_quad_rule r;
+    if (mfs_quad_rule_parse(value, &r) != MFS_OK ||
+        mfs_quad_rule_check(&r, 1, MFS_LATTICE_LINE) != MFS_OK || strlen(value) >= 32)
+      key_error(sc, line, k->section, k->name, value, "allowed: nodal, stress, gauss1 .. gauss10");
+    strcpy(sc->quadrature, value);
+    break;
+  }
+  case EQUILIBRATE: sp->equilibrate = (int)l; break;
+  case SKIN: sp->skin = x; break;
+  case CENTER_VELOCITY: sc->center_velocity = x; break;
+  case PERTURBATION: sc->perturbation = x; break;
+  case SEED:
+    if (l < 0)
+      key_error(sc, line, k->section, k->name, value, "must be >= 0");
+    sc->seed = (unsigned long)l;
+    break;
+  case PULSE_AMPLITUDE: sc->pulse_amplitude = x; break;
+  case PULSE_ALPHA: sc->pulse_alpha = x; break;
+  case PULSE_CENTER: sc->pulse_center = x; break;
+  case LEFT: sp->bc[0] = parse_bc(sc, line, id, value); break;
+  case RIGHT: sp->bc[1] = parse_bc(sc, line, id, value); break;
+  case LEFT_VELOCITY: sp->bc_velocity[0] = x; break;
+  case RIGHT_VELOCITY: sp->bc_velocity[1] = x; break;
+  case LEFT_UNTIL: sp->bc_until[0] = x; break;
+  case RIGHT_UNTIL: sp->bc_until[1] = x; break;
+  case END: sc->end = x; break;
+  case DT: sc->dt = x; sc->have_dt = 1; break;
+  case SAFETY:
+    if (x > 1.0)
+      key_error(sc, line, k->section, k->name, value, "must be in (0, 1]");
+    sc->safety = x;
+    break;
+  case SCHEME:
+    if (mfs_scheme_parse(value, &sc->scheme) != MFS_OK)
+      key_error(sc, line, k->section, k->name, value, "allowed: leapfrog, euler, rk2, rk4");
+    break;
+  case FORCE: sc->force = (int)l; break;
+  case PROBES: {
+    char buf[512];
+    if (strlen(value) >= sizeof buf)
+      key_error(sc, line, k->section, k->name, value, "too long");
+    strcpy(buf, value);
+    sc->nprobes = 0;
+    for (char *tok = strtok(buf, ", \t"); tok; tok = strtok(NULL, ", \t")) {
+      int p = 0;
+      while (p < PROBE_COUNT && strcmp(tok, scene_probe_names[p]))
+        p++;
+      if (p == PROBE_COUNT)
+        key_error(sc, line, k->section, k->name, value,
+                  "unknown probe '%s'; allowed: v_center, u_center, kinetic_energy, "
+                  "potential_energy, total_energy, sigma_end, sigma_center, mode_amp, max_v",
+                  tok);
+      if (sc->nprobes == SCENE_MAX_PROBES)
+        key_error(sc, line, k->section, k->name, value, "at most %d probes", SCENE_MAX_PROBES);
+      sc->probe[sc->nprobes++] = p;
+    }
+    if (sc->nprobes == 0)
+      key_error(sc, line, k->section, k->name, value, "empty list");
+    break;
+  }
+  case EVERY:
+    if (l < 1)
+      key_error(sc, line, k->section, k->name, value, "must be >= 1");
+    sc->every = (int)l;
+    break;
+  case MODE:
+    if (x > 1.0)
+      key_error(sc, line, k->section, k->name, value, "must be in (0, 1] (kappa dX / pi)");
+    sc->mode = x;
+    break;
+  case NKEYS: break;
+  }
+  sc->line[id] = line;
+  snprintf(values[id], sizeof values[id], "%s", value);
+}
+
+static int find_key(const char *section, const char *name, int *section_known)
+{
+  *section_known = 0;
+  for (int id = 0; id < NKEYS; id++) {
+    if (strcmp(keys[id].section, section))
+      continue;
+    *section_known = 1;
+    if (strcmp(keys[id].name, name) == 0)
+      return id;
+  }
+  return -1;
+}
+
+static const char all_sections[] = "model, material, discretization, initial, boundary, time, output";
+
+static void unknown_key(const scene *sc, int line, const char *section, const char *name,
+                        const char *value, int section_known)
+{
+  if (!section_known)
+    key_error(sc, line, section, name, value, "unknown section [%s]; allowed: %s", section,
+              all_sections);
+  char allowed[512] = "";
+  for (int id = 0; id < NKEYS; id++)
+    if (strcmp(keys[id].section, section) == 0) {
+      if (allowed[0])
+        strncat(allowed, ", ", sizeof allowed - strlen(allowed) - 1);
+      strncat(allowed, keys[id].name, sizeof allowed - strlen(allowed) - 1);
+    }
+  key_error(sc, line, section, name, value, "unknown key; allowed in [%s]: %s", section, allowed);
+}
+
+static int handler(void *user, const char *section, const char *name, const char *value)
+{
+  parse_ctx *c = user;
+  if (!name) /* a section header alone (INI_CALL_HANDLER_ON_NEW_SECTION) */
+    return 1;
+  int known;
+  int id = find_key(section, name, &known);
+  if (id < 0)
+    unknown_key(c->sc, c->line, section, name, value, known);
+  if (c->sc->line[id] > 0)
+    key_error(c->sc, c->line, section, name, value, "key already set on line %d",
+              c->sc->line[id]);
+  set_key(c->sc, c->line, (key_id)id, value);
+  return 1;
+}
+
+/* Line reader that counts lines for the messages. */
+static char *reader(char *str, int num, void *stream)
+{
+  parse_ctx *c = stream;
+  char *r = fgets(str, num, c->f);
+  if (r)
+    c->line++;
+  return r;
+}
+
+static void defaults(scene *sc, const char *path)
+{
+  memset(sc, 0, sizeof *sc);
+  memset(values, 0, sizeof values);
+  sc->path = path;
+  mfs_solver_spec *sp = &sc->spec;
+  sp->kernel = &mfs_kernel_quartic;
+  sp->shape = &mfs_shape_mls;
+  sp->dilation = 2.0;
+  sp->frame = MFS_FRAME_LAGRANGIAN;
+  sp->equilibrate = 1;
+  sp->bc[0] = sp->bc[1] = MFS_BC_FIXED;
+  sp->bc_until[0] = sp->bc_until[1] = INFINITY;
+  strcpy(sc->quadrature, "nodal");
+  sc->seed = 1;
+  sc->safety = 0.9;
+  sc->scheme = MFS_SCHEME_LEAPFROG;
+  sc->every = 1;
+  sc->mode = 1.0;
+  sc->pulse_alpha = 1.0;
+}
+
+void scene_load(scene *sc, const char *path)
+{
+  defaults(sc, path);
+  parse_ctx c = {sc, 0, fopen(path, "r")};
+  if (!c.f)
+    cli_die(2, "%s: cannot open the scene file (%s)", path, strerror(errno));
+  int r = ini_parse_stream(reader, &c, handler, &c);
+  fclose(c.f);
+  if (r > 0)
+    cli_die(2, "%s:%d: syntax error; expected [section] or key = value", path, r);
+  if (r < 0)
+    cli_die(2, "%s: cannot read the scene file", path);
+}
+
+void scene_set(scene *sc, const char *assignment)
+{
+  snprintf(set_origin, sizeof set_origin, "%s", assignment);
+  char *eq = strchr(set_origin, '='), *dot = strchr(set_origin, '.');
+  if (!eq || !dot || dot > eq)
+    cli_die(2, "--set '%s': expected SECTION.KEY=VALUE", assignment);
+  *eq = '\0';
+  *dot = '\0';
+  const char *section = set_origin, *name = dot + 1, *value = eq + 1;
+  int known;
+  int id = find_key(section, name, &known);
+  if (id < 0)
+    unknown_key(sc, 0, section, name, value, known);
+  set_key(sc, 0, (key_id)id, value);
+}
+
+void scene_finish(scene *sc)
+{
+  for (int id = 0; id < NKEYS; id++)
+    if (keys[id].required && !values[id][0])
+      cli_die(2, "%s: [%s] %s: missing; this key is required", sc->path, keys[id].section,
+              keys[id].name);
+  mfs_solver_spec *sp = &sc->spec;
+  sp->quadrature = sc->quadrature;
+  if (sp->periodic && (values[LEFT][0] || values[RIGHT][0]))
+    scene_key_error(sc, "boundary", values[LEFT][0] ? "left" : "right",
+                    "no end conditions on a periodic rod ([model] periodic = 1)");
+  if (sp->periodic)
+    sp->bc[0] = sp->bc[1] = MFS_BC_FREE;
+  if (sp->initial_stress <= -sp->modulus)
+    scene_key_error(sc, "material", "initial_stress",
+                    "must be > -modulus (the tangent E + S0 must stay positive)");
+  for (int k = 0; k < 2; k++)
+    if (values[k ? RIGHT_VELOCITY : LEFT_VELOCITY][0] && sp->bc[k] != MFS_BC_VELOCITY)
+      scene_key_error(sc, "boundary", k ? "right_velocity" : "left_velocity",
+                      "needs [boundary] %s = velocity", k ? "right" : "left");
+  if (sc->have_dt && values[SAFETY][0])
+    scene_key_error(sc, "time", "safety", "give either dt or safety, not both");
+}

@@ -1,0 +1,61 @@
+/* Scene files of `mfstab run`: an INI file (read with inih) describing a
+ * rod, its discretization, initial and boundary conditions, the time
+ * integration and the probes to record.  Validated once; every error names
+ * the file, the line, the section and the key, and exits with code 2. */
+#ifndef MFSTAB_SCENE_H
+#define MFSTAB_SCENE_H
+
+#include "mfstab.h"
+#include "mfs_solver.h"
+
+#define SCENE_MAX_PROBES 16
+
+typedef struct {
+  const char *path;        /* the scene file */
+  mfs_solver_spec spec;    /* model, material, discretization, boundary */
+  char quadrature[32];
+  /* [initial] */
+  double center_velocity;  /* velocity of the particle nearest L/2 */
+  double perturbation;     /* random displacement in [-p, p] dX */
+  unsigned long seed;
+  double pulse_amplitude, pulse_alpha, pulse_center; /* v = A exp(-alpha (X - c)^2) */
+  /* [time] */
+  double end, dt, safety;
+  int have_dt, force;
+  mfs_scheme scheme;
+  /* [output] */
+  int nprobes;
+  int probe[SCENE_MAX_PROBES];
+  int every;
+  double mode;             /* kappa dX / pi of the mode_amp probe */
+  /* where each key was set (line, or 0 for --set / default) */
+  int line[64];
+} scene;
+
+/* Probe identifiers and names. */
+enum {
+  PROBE_V_CENTER,
+  PROBE_U_CENTER,
+  PROBE_KINETIC,
+  PROBE_POTENTIAL,
+  PROBE_TOTAL,
+  PROBE_SIGMA_END,
+  PROBE_SIGMA_CENTER,
+  PROBE_MODE_AMP,
+  PROBE_MAX_V,
+  PROBE_COUNT
+};
+extern const char *const scene_probe_names[PROBE_COUNT];
+
+/* Read the file (exit 2 on any error). */
+void scene_load(scene *sc, const char *path);
+/* Apply "section.key=value" from the command line (exit 2 on error). */
+void scene_set(scene *sc, const char *assignment);
+/* Check required keys and cross-key constraints (exit 2). */
+void scene_finish(scene *sc);
+/* Die (code 2) with "FILE:LINE: [section] key = value: message" for a key
+ * of the table by section and name. */
+_Noreturn void scene_key_error(const scene *sc, const char *section, const char *key,
+                               const char *fmt, ...);
+
+#endif
