@@ -131,6 +131,155 @@ static int search(mfs_solver *s)
   return MFS_OK;
 }
 
+/* b - a for two 1D coordinates, the minimum image when the box is periodic.
+ * Same value as mfs_box_delta for |b - a| < 1.5 L (all points here: x = X + u
+ * with X in the box), without its division and nearbyint. */
+static inline double delta1(const mfs_box *box, double a, double b)
+{
+  double t = b - a;
+  if (box->periodic) {
+    double L = box->hi[0] - box->lo[0];
+    if (fabs(t) >= 1.5 * L)
+      t -= L * nearbyint(t / L);
+    else if (t > 0.5 * L)
+      t -= L;
+    else if (t < -0.5 * L)
+      t += L;
+  }
+  return t;
+}
+
+static inline double max2(double a, double b)
+{
+  return a > b ? a : b;
+}
+
+/* Current positions x = X + u and quadrature points; search again when some
+ * point moved more than skin/2 since the last search. */
+static int eulerian_positions(mfs_solver *s, const double *u)
+{
+  mfs_solver_work *w = s->w;
+  const mfs_plan *pl = w->pl;
+  const mfs_box *box = &w->p->box;
+  const int *node = w->q->node;
+  double *x = w->x, *xq = w->xq;
+  const double *xb = w->xb, *xqb = w->xqb;
+  double moved = 0.0;
+  int finite = 1;
+  for (size_t I = 0; I < s->n; I++) {
+    x[I] = s->X[I] + u[I];
+    double dI = fabs(delta1(box, xb[I], x[I]));
+    finite &= isfinite(dI);
+    moved = max2(moved, dI);
+  }
+  for (size_t Q = 0; Q < s->nq; Q++) {
+    if (node[Q] >= 0) {
+      xq[Q] = x[node[Q]];
+    } else { /* interpolated displacement, Lagrangian table */
+      double uq = 0.0;
+      for (size_t e = pl->nl->ptr[Q]; e < pl->nl->ptr[Q + 1]; e++)
+        uq += pl->tab[2 * e] * u[pl->nl->idx[e]];
+      xq[Q] = s->xq0[Q] + uq;
+    }
+    double dq = fabs(delta1(box, xqb[Q], xq[Q]));
+    finite &= isfinite(dq);
+    moved = max2(moved, dq);
+  }
+  if (!finite)
+    return MFS_EDOMAIN;
+  if (!w->cand || moved > 0.5 * w->skin)
+    return search(s);
+  return MFS_OK;
+}
+
+/* Eulerian internal force, 1D linear MLS: the arithmetic of mls_fast_order1
+ * (mfs_shape.c) in the same order, fused with the gather of the neighbours
+ * within a and the scatter of the force, so one pass over the candidates
+ * and no per-point call.  Results as force_eulerian with mfs_shape_mls. */
+static int force_eulerian_mls1(mfs_solver *s, const double *u, double *f)
+{
+  mfs_solver_work *w = s->w;
+  const mfs_shape_ctx *c = &w->pl->ctx;
+  const mfs_box *box = &w->p->box;
+  void (*keval)(double, double *, double *, double *) = c->kernel->eval;
+  const int quartic = c->kernel == &mfs_kernel_quartic;
+  const double E = s->spec.modulus, S0 = s->spec.initial_stress, rcmin = c->rcond_min;
+  const double ia = 1.0 / c->a, cn = c->kernel->norm[0] * ia, a = w->a;
+  const double *x = w->x, *xq = w->xq, *wq = s->wq;
+  const size_t *ptr = w->cand->ptr;
+  const int *idx = w->cand->idx;
+  double *kW = w->out, *kpx = w->d, *kdphi = w->vol;
+  int *kJ = w->loc;
+  memset(f, 0, s->n * sizeof *f);
+  for (size_t Q = 0; Q < s->nq; Q++) {
+    const double xQ = xq[Q];
+    double a00 = 0, a01 = 0, a11 = 0, b00 = 0, b01 = 0, b11 = 0;
+    int nn = 0;
+    for (size_t e = ptr[Q]; e < ptr[Q + 1]; e++) {
+      int J = idx[e];
+      double dd = delta1(box, xQ, x[J]);
+      if (fabs(dd) >= a)
+        continue;
+      double px = dd * ia, z = fabs(px), wv = 0.0, dw = 0.0, d2w = 0.0;
+      if (z < 1.0) {
+        if (quartic) { /* quartic_eval (mfs_kernel.c), inlined: same operations */
+          double z2 = z * z;
+          wv = 1.0 - 6.0 * z2 + 8.0 * z2 * z - 3.0 * z2 * z2;
+          dw = -12.0 * z + 24.0 * z2 - 12.0 * z2 * z;
+          d2w = -12.0 + 48.0 * z - 36.0 * z2;
+        } else {
+          keval(z, &wv, &dw, &d2w);
+        }
+      }
+      double W = cn * wv;
+      double t = z > 0.0 ? -cn * dw / z * ia : -cn * d2w * ia;
+      double gx = t * px;
+      a00 += W;
+      a01 += W * px;
+      a11 += W * px * px;
+      b00 += gx;
+      b01 += gx * px;
+      b11 += gx * px * px;
+      kW[2 * nn] = W;
+      kW[2 * nn + 1] = gx;
+      kpx[nn] = px;
+      kJ[nn] = J;
+      nn++;
+    }
+    double det = a00 * a11 - a01 * a01;
+    if (!(det > 0.0))
+      return MFS_ESINGULAR;
+    double i00 = a11 / det, i01 = -a01 / det, i11 = a00 / det;
+    double na = max2(fabs(a00) + fabs(a01), fabs(a01) + fabs(a11));
+    double ni = max2(fabs(i00) + fabs(i01), fabs(i01) + fabs(i11));
+    double rc = 1.0 / (na * ni);
+    if (!(rc >= rcmin) || rc == 0.0)
+      return MFS_ESINGULAR;
+    double g0 = i00, g1 = i01; /* dg = A^-1 (e1/a - dA g) */
+    double r0 = -(b00 * g0 + b01 * g1);
+    double r1 = ia - (b01 * g0 + b11 * g1);
+    double dg0 = i00 * r0 + i01 * r1, dg1 = i01 * r0 + i11 * r1;
+    double dudx = 0.0; /* eq. 68 */
+    for (int k = 0; k < nn; k++) {
+      double px = kpx[k];
+      double gp = g0 + g1 * px, dgp = dg0 + dg1 * px;
+      double dphi = dgp * kW[2 * k] + gp * kW[2 * k + 1];
+      kdphi[k] = dphi;
+      dudx += dphi * u[kJ[k]];
+    }
+    if (!(dudx < 1.0))
+      return MFS_EDOMAIN;
+    double F = 1.0 / (1.0 - dudx);
+    double sig = F * (0.5 * E * (F * F - 1.0) + S0);
+    s->F[Q] = F;
+    s->sigma[Q] = sig;
+    double Vs = wq[Q] * F * sig;
+    for (int k = 0; k < nn; k++)
+      f[kJ[k]] += kdphi[k] * Vs;
+  }
+  return MFS_OK;
+}
+
 /* Eulerian internal force, eqs 64-68: shape functions at the current
  * quadrature points, V_Q = w_Q F_Q, sigma = P. */
 static int force_eulerian(mfs_solver *s, const double *u, double *f)
@@ -139,43 +288,18 @@ static int force_eulerian(mfs_solver *s, const double *u, double *f)
   const mfs_plan *pl = w->pl;
   const mfs_box *box = &w->p->box;
   const double E = s->spec.modulus, S0 = s->spec.initial_stress;
-  for (size_t I = 0; I < s->n; I++)
-    w->x[I] = s->X[I] + u[I];
-  double moved = 0.0;
-  for (size_t Q = 0; Q < s->nq; Q++) {
-    int node = w->q->node[Q];
-    if (node >= 0) {
-      w->xq[Q] = w->x[node];
-    } else { /* interpolated displacement, Lagrangian table */
-      double uq = 0.0;
-      for (size_t e = pl->nl->ptr[Q]; e < pl->nl->ptr[Q + 1]; e++)
-        uq += pl->tab[2 * e] * u[pl->nl->idx[e]];
-      w->xq[Q] = s->xq0[Q] + uq;
-    }
-    double dq;
-    mfs_box_delta(box, w->xqb + Q, w->xq + Q, &dq);
-    moved = fmax(moved, fabs(dq));
-  }
-  for (size_t I = 0; I < s->n; I++) {
-    double dI;
-    mfs_box_delta(box, w->xb + I, w->x + I, &dI);
-    moved = fmax(moved, fabs(dI));
-  }
-  if (!isfinite(moved))
-    return MFS_EDOMAIN;
-  if (!w->cand || moved > 0.5 * w->skin) {
-    int st = search(s);
-    if (st != MFS_OK)
-      return st;
-  }
+  int st = eulerian_positions(s, u);
+  if (st != MFS_OK)
+    return st;
+  if (pl->shape == &mfs_shape_mls && pl->ctx.dim == 1)
+    return force_eulerian_mls1(s, u, f);
   memset(f, 0, s->n * sizeof *f);
   const mfs_nlist *cl = w->cand;
   for (size_t Q = 0; Q < s->nq; Q++) {
     int nn = 0, self = -1, node = w->q->node[Q];
     for (size_t e = cl->ptr[Q]; e < cl->ptr[Q + 1]; e++) {
       int J = cl->idx[e];
-      double dd;
-      mfs_box_delta(box, w->xq + Q, w->x + J, &dd);
+      double dd = delta1(box, w->xq[Q], w->x[J]);
       if (fabs(dd) >= w->a)
         continue;
       if (J == node)
@@ -186,7 +310,7 @@ static int force_eulerian(mfs_solver *s, const double *u, double *f)
       nn++;
     }
     double rc;
-    int st = pl->shape->eval(&pl->ctx, nn, w->d, w->vol, self, 1, w->out, w->swork, &rc);
+    st = pl->shape->eval(&pl->ctx, nn, w->d, w->vol, self, 1, w->out, w->swork, &rc);
     if (st != MFS_OK)
       return st;
     double dudx = 0.0; /* eq. 68 */
