@@ -26,10 +26,7 @@ static void cubic_eval(double z, double *w, double *dw, double *d2w)
 static void quartic_eval(double z, double *w, double *dw, double *d2w)
 {
   if (z < 1.0) {
-    double z2 = z * z;
-    *w = 1.0 - 6.0 * z2 + 8.0 * z2 * z - 3.0 * z2 * z2;
-    *dw = -12.0 * z + 24.0 * z2 - 12.0 * z2 * z;
-    *d2w = -12.0 + 48.0 * z - 36.0 * z2;
+    mfs_kernel_quartic_poly(z, w, dw, d2w);
   } else {
     *w = *dw = *d2w = 0.0;
   }

@@ -20,6 +20,16 @@ extern const mfs_kernel_type mfs_kernel_quartic;   /* 1 - 6z^2 + 8z^3 - 3z^4 */
 extern const mfs_kernel_type mfs_kernel_wendland2; /* Wendland C2: (1-z)^4 (1+4z) */
 extern const mfs_kernel_type mfs_kernel_quintic;   /* quintic spline, q = 3z */
 
+/* The quartic spline on z < 1, inline for hot loops that special-case it
+ * (the table entry mfs_kernel_quartic evaluates the same expression). */
+static inline void mfs_kernel_quartic_poly(double z, double *w, double *dw, double *d2w)
+{
+  double z2 = z * z;
+  *w = 1.0 - 6.0 * z2 + 8.0 * z2 * z - 3.0 * z2 * z2;
+  *dw = -12.0 * z + 24.0 * z2 - 12.0 * z2 * z;
+  *d2w = -12.0 + 48.0 * z - 36.0 * z2;
+}
+
 /* NULL-terminated list of all kernels, for lookup by name. */
 extern const mfs_kernel_type *const mfs_kernel_types[];
 

@@ -222,14 +222,10 @@ static int force_eulerian_mls1(mfs_solver *s, const double *u, double *f)
         continue;
       double px = dd * ia, z = fabs(px), wv = 0.0, dw = 0.0, d2w = 0.0;
       if (z < 1.0) {
-        if (quartic) { /* quartic_eval (mfs_kernel.c), inlined: same operations */
-          double z2 = z * z;
-          wv = 1.0 - 6.0 * z2 + 8.0 * z2 * z - 3.0 * z2 * z2;
-          dw = -12.0 * z + 24.0 * z2 - 12.0 * z2 * z;
-          d2w = -12.0 + 48.0 * z - 36.0 * z2;
-        } else {
+        if (quartic) /* inline: no call through the table */
+          mfs_kernel_quartic_poly(z, &wv, &dw, &d2w);
+        else
           keval(z, &wv, &dw, &d2w);
-        }
       }
       double W = cn * wv;
       double t = z > 0.0 ? -cn * dw / z * ia : -cn * d2w * ia;
