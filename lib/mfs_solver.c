@@ -528,7 +528,13 @@ mfs_solver *mfs_solver_alloc(const mfs_solver_spec *spec, int *status, size_t *b
   }
   if ((st = power_lambda(s, &s->lambda_power)) != MFS_OK)
     goto fail;
-  double lam = fmax(s->lambda_bound, s->lambda_power);
+  /* The element bound is proven only where every phi_I > 0 (eq. 132) and can
+   * be far above lambda_max where some phi_I is tiny (MLS at free ends with
+   * nodal integration: 1e16 times); the power estimate converges to lambda_max
+   * from below.  Use the proven bound, but no more than 5% above the estimate. */
+  double lam = 1.05 * s->lambda_power;
+  if (s->negative_phi == 0 && s->lambda_bound > 0.0 && s->lambda_bound < lam)
+    lam = s->lambda_bound;
   if (!(lam > 0.0) || !isfinite(lam)) {
     st = MFS_EDOMAIN;
     goto fail;

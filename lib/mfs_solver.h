@@ -28,10 +28,11 @@
  * Time integration: central difference (leapfrog, kick-drift-kick form with
  * velocities at whole steps: one force evaluation per step), forward Euler,
  * RK2 (midpoint), RK4, all with the same force routine.  Stable step:
- * dt_crit = 2 / sqrt(lambda_max) (eq. 120), lambda_max the larger of the
- * element bound (eqs 124, 132, with Cbar = E + S0 in place of E) and a power
- * iteration on the linearized operator at u = 0 (which also covers shape
- * functions with negative values, where eq. 132 is not guaranteed). */
+ * dt_crit = 2 / sqrt(lambda), lambda = 1.05 times a power-iteration estimate
+ * of lambda_max of the linearized operator at u = 0 (it converges from below),
+ * or the element bound (eqs 124, 132, with Cbar = E + S0 in place of E) when
+ * that is proven (every phi_I > 0 at the quadrature points) and smaller.  The
+ * bound alone can be useless: MLS phi_I nearly vanish at free ends. */
 #ifndef MFS_SOLVER_H
 #define MFS_SOLVER_H
 

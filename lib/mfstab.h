@@ -17,6 +17,7 @@
 #include "mfs_shape.h"
 #include "mfs_solver.h"
 #include "mfs_status.h"
+#include "mfs_tsph.h"
 #include "mfs_voronoi.h"
 
 #endif

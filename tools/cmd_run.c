@@ -18,7 +18,10 @@ static const char help[] =
   "Explicit time integration of a 1D rod of particles (lib/mfs_solver.h) described by an INI\n"
   "scene file; writes CSV columns t followed by the probes of [output] probes.\n"
   "Sections and keys (defaults in parentheses; * required):\n"
-  "  [model]          nodes*, length* (m), periodic (0)\n"
+  "  [model]          nodes*, length* (m), periodic (0), formulation (displacement |\n"
+  "                   stress_velocity: the TSPH bar of lib/mfs_tsph.h, schemes tsph (default),\n"
+  "                   euler, rk2, rk4; [material] yield_stress, fluidity, perzyna_exponent,\n"
+  "                   hardening; [discretization] interpolation (shepard | linear))\n"
   "  [material]       density* (kg/m^3), modulus* E (Pa), initial_stress S0 (0 Pa)\n"
   "                   S = E (F^2-1)/2 + S0, P = F S\n"
   "  [discretization] kernel (quartic), dilation D (2), shape (mls; sph shepard kb rl),\n"
@@ -34,7 +37,7 @@ static const char help[] =
   "                   (leapfrog | euler | rk2 | rk4), force (0: a dt above the central-\n"
   "                   difference limit 2/sqrt(lambda_max) is refused)\n"
   "  [output]         probes* (v_center, u_center, kinetic_energy, potential_energy,\n"
-  "                   total_energy, sigma_end, sigma_center, mode_amp, max_v), every (1),\n"
+  "                   total_energy, sigma_end, sigma_center, mode_amp, max_v, v_mid, v_err), every (1),\n"
   "                   mode (1: kappa dX/pi of mode_amp = (2/n) |sum_I u_I exp(-i kappa X_I)|)\n"
   "options:\n"
   "  --set SECTION.KEY=VALUE   override a key of the scene (repeatable)\n"
@@ -55,12 +58,163 @@ static void die_status(const scene *sc, int st, size_t bad, double t)
   cli_die(1, "%s: at t = %g s: %s", sc->path, t, mfs_strerror(st));
 }
 
+/* Initial pulse v0(X) = A exp(-alpha (X - c)^2) of the scene. */
+static double pulse(const scene *sc, double X)
+{
+  double d = X - sc->pulse_center;
+  return sc->pulse_amplitude * exp(-sc->pulse_alpha * d * d);
+}
+
+/* d'Alembert solution of the linear rod u_tt = c^2 u_xx on [0, L] with free
+ * ends (u_x = 0, so v_x = 0), u(x, 0) = 0, v(x, 0) = v0(x):
+ *   v(x, t) = (V(x - c t) + V(x + c t)) / 2,
+ * V the even, 2L-periodic extension of v0 (the image sources of the
+ * Neumann ends: a free end reflects velocity with the same sign). */
+static double free_rod_velocity(const scene *sc, double c, double X, double t)
+{
+  double L = sc->spec.length, r = 0.0;
+  for (int k = 0; k < 2; k++) {
+    double y = fmod(X + (k ? c * t : -c * t), 2.0 * L);
+    if (y < 0)
+      y += 2.0 * L;
+    if (y > L)
+      y = 2.0 * L - y;
+    r += 0.5 * pulse(sc, y);
+  }
+  return r;
+}
+
+/* Relative discrete L2 error of the particle velocities against the exact
+ * free-rod solution (paper 000 eq. 75): ||v_h - v|| / ||v||. */
+static double velocity_error(const scene *sc, double c, const double *X, const double *v,
+                             size_t n, double t)
+{
+  double e = 0.0, r = 0.0;
+  for (size_t I = 0; I < n; I++) {
+    double ve = free_rod_velocity(sc, c, X[I], t);
+    e += (v[I] - ve) * (v[I] - ve);
+    r += ve * ve;
+  }
+  return sqrt(e / r);
+}
+
+/* Velocity at X by linear interpolation on the uniform particles. */
+static double velocity_at(const double *v, size_t n, double dX, double X)
+{
+  double q = X / dX;
+  if (!(q > 0.0))
+    return v[0];
+  if (q >= (double)(n - 1))
+    return v[n - 1];
+  size_t I = (size_t)q;
+  double f = q - (double)I;
+  return (1.0 - f) * v[I] + f * v[I + 1];
+}
+
 static void put(FILE *f, double v)
 {
   char b[40];
   cli_fmt(b, sizeof b, v);
   fputc(',', f);
   fputs(b, f);
+}
+
+static void progress(int tty, long k, long nsteps, int *shown)
+{
+  if (!tty)
+    return;
+  int pc = (int)(100 * (k + 1) / nsteps);
+  if (pc != *shown) {
+    *shown = pc;
+    fprintf(stderr, "\r[%-50.*s] %3d%%", pc / 2,
+            "##################################################", pc);
+    if (k + 1 == nsteps)
+      fputc('\n', stderr);
+  }
+}
+
+static void die_tsph(const scene *sc, int st, double t)
+{
+  if (st == MFS_ESINGULAR)
+    scene_key_error(sc, "discretization", "dilation",
+                    "a particle sees no neighbour of the other set; use a larger dilation");
+  if (st == MFS_EINVAL)
+    cli_die(2, "%s: invalid combination of keys: %s", sc->path, mfs_strerror(st));
+  cli_die(1, "%s: at t = %g s: %s", sc->path, t, mfs_strerror(st));
+}
+
+/* [model] formulation = stress_velocity: the TSPH bar (lib/mfs_tsph.h). */
+static int run_tsph(scene *sc, const char *outpath)
+{
+  int st;
+  mfs_tsph_spec spec = scene_tsph_spec(sc);
+  mfs_tsph *s = mfs_tsph_alloc(&spec, &st);
+  if (!s)
+    die_tsph(sc, st, 0.0);
+  if (mfs_tsph_set_dt(s, sc->have_dt ? sc->dt : sc->safety * s->dt_cfl) != MFS_OK)
+    die_tsph(sc, MFS_EINVAL, 0.0);
+  size_t n = s->n;
+  double *v0 = calloc(n, sizeof *v0);
+  if (!v0)
+    cli_die(1, "out of memory");
+  if (sc->pulse_amplitude != 0.0)
+    for (size_t I = 0; I < n; I++)
+      v0[I] = pulse(sc, s->X[I]);
+  size_t ic = 0, L = n - 1;
+  for (size_t I = 0; I < n; I++)
+    if (fabs(s->X[I] - 0.5 * spec.length) < fabs(s->X[ic] - 0.5 * spec.length))
+      ic = I;
+  v0[ic] += sc->center_velocity;
+  if ((st = mfs_tsph_set_state(s, NULL, v0)) != MFS_OK)
+    die_tsph(sc, st, 0.0);
+  free(v0);
+  double c = sqrt(spec.modulus / spec.density);
+
+  cli_out out;
+  cli_out_open(&out, outpath);
+  fputs("t", out.f);
+  for (int p = 0; p < sc->nprobes; p++)
+    fprintf(out.f, ",%s", scene_probe_names[sc->probe[p]]);
+  fputc('\n', out.f);
+  long nsteps = (long)ceil(sc->end / s->dt * (1.0 - 1e-12));
+  int tty = isatty(STDERR_FILENO), shown = -1;
+  for (long k = 0;; k++) {
+    if (k % sc->every == 0 || k == nsteps) {
+      double kin, pot;
+      mfs_tsph_energy(s, &kin, &pot);
+      char b[40];
+      cli_fmt(b, sizeof b, s->t);
+      fputs(b, out.f);
+      for (int p = 0; p < sc->nprobes; p++) {
+        double val = 0.0;
+        switch (sc->probe[p]) {
+        case PROBE_V_CENTER: val = s->v[ic]; break;
+        case PROBE_KINETIC: val = kin; break;
+        case PROBE_POTENTIAL: val = pot; break;
+        case PROBE_TOTAL: val = kin + pot; break;
+        case PROBE_SIGMA_END: val = s->sigma[L]; break;
+        case PROBE_SIGMA_CENTER: val = s->sigma[ic]; break;
+        case PROBE_MAX_V:
+          for (size_t I = 0; I < n; I++)
+            val = fmax(val, fabs(s->v[I]));
+          break;
+        case PROBE_V_MID: val = mfs_tsph_velocity_at(s, 0.5 * spec.length); break;
+        case PROBE_V_ERR: val = velocity_error(sc, c, s->X, s->v, n, s->t); break;
+        default: break; /* refused by scene_finish */
+        }
+        put(out.f, val);
+      }
+      fputc('\n', out.f);
+    }
+    if (k == nsteps)
+      break;
+    if ((st = mfs_tsph_step(s)) != MFS_OK)
+      die_tsph(sc, st, s->t);
+    progress(tty, k, nsteps, &shown);
+  }
+  mfs_tsph_free(s);
+  cli_out_commit(&out);
+  return 0;
 }
 
 int cmd_run(int argc, char **argv)
@@ -97,6 +251,8 @@ int cmd_run(int argc, char **argv)
   for (int i = 0; i < nsets; i++)
     scene_set(&sc, sets[i]);
   scene_finish(&sc);
+  if (sc.stress_velocity)
+    return run_tsph(&sc, outpath);
 
   int st;
   size_t bad = 0;
@@ -197,6 +353,12 @@ int cmd_run(int argc, char **argv)
         case PROBE_MAX_V:
           for (size_t I = 0; I < n; I++)
             val = fmax(val, fabs(s->v[I]));
+          break;
+        case PROBE_V_MID:
+          val = sc.spec.periodic ? s->v[ic] : velocity_at(s->v, n, s->dX, 0.5 * sc.spec.length);
+          break;
+        case PROBE_V_ERR:
+          val = velocity_error(&sc, sqrt(sc.spec.modulus / sc.spec.density), s->X, s->v, n, s->t);
           break;
         }
         put(out.f, val);

@@ -16,14 +16,14 @@
 
 const char *const scene_probe_names[PROBE_COUNT] = {
   "v_center", "u_center", "kinetic_energy", "potential_energy", "total_energy",
-  "sigma_end", "sigma_center", "mode_amp", "max_v"};
+  "sigma_end", "sigma_center", "mode_amp", "max_v", "v_mid", "v_err"};
 
 typedef enum { K_INT, K_POS, K_NONNEG, K_REAL, K_BOOL, K_WORD } key_type;
 
 typedef enum {
-  /* [model] */ NODES, LENGTH, PERIODIC,
-  /* [material] */ DENSITY, MODULUS, INITIAL_STRESS,
-  /* [discretization] */ KERNEL, DILATION, SHAPE, FRAME, QUADRATURE, EQUILIBRATE, SKIN,
+  /* [model] */ NODES, LENGTH, PERIODIC, FORMULATION,
+  /* [material] */ DENSITY, MODULUS, INITIAL_STRESS, YIELD_STRESS, FLUIDITY, EXPONENT, HARDENING,
+  /* [discretization] */ INTERPOLATION, KERNEL, DILATION, SHAPE, FRAME, QUADRATURE, EQUILIBRATE, SKIN,
   /* [initial] */ CENTER_VELOCITY, PERTURBATION, SEED, PULSE_AMPLITUDE, PULSE_ALPHA, PULSE_CENTER,
   /* [boundary] */ LEFT, RIGHT, LEFT_VELOCITY, RIGHT_VELOCITY, LEFT_UNTIL, RIGHT_UNTIL,
   /* [time] */ END, DT, SAFETY, SCHEME, FORCE,
@@ -41,9 +41,15 @@ static const key_def keys[NKEYS] = {
   [NODES] = {"model", "nodes", K_INT, 1},
   [LENGTH] = {"model", "length", K_POS, 1},
   [PERIODIC] = {"model", "periodic", K_BOOL, 0},
+  [FORMULATION] = {"model", "formulation", K_WORD, 0},
   [DENSITY] = {"material", "density", K_POS, 1},
   [MODULUS] = {"material", "modulus", K_POS, 1},
   [INITIAL_STRESS] = {"material", "initial_stress", K_REAL, 0},
+  [YIELD_STRESS] = {"material", "yield_stress", K_POS, 0},
+  [FLUIDITY] = {"material", "fluidity", K_NONNEG, 0},
+  [EXPONENT] = {"material", "perzyna_exponent", K_NONNEG, 0},
+  [HARDENING] = {"material", "hardening", K_REAL, 0},
+  [INTERPOLATION] = {"discretization", "interpolation", K_WORD, 0},
   [KERNEL] = {"discretization", "kernel", K_WORD, 0},
   [DILATION] = {"discretization", "dilation", K_POS, 0},
   [SHAPE] = {"discretization", "shape", K_WORD, 0},
@@ -179,6 +185,18 @@ static void set_key(scene *sc, int line, key_id id, const char *value)
     break;
   case LENGTH: sp->length = x; break;
   case PERIODIC: sp->periodic = (int)l; break;
+  case FORMULATION:
+    if (!strcmp(value, "displacement"))
+      sc->stress_velocity = 0;
+    else if (!strcmp(value, "stress_velocity"))
+      sc->stress_velocity = 1;
+    else
+      key_error(sc, line, k->section, k->name, value, "allowed: displacement, stress_velocity");
+    break;
+  case YIELD_STRESS: sc->yield_stress = x; break;
+  case FLUIDITY: sc->fluidity = x; break;
+  case EXPONENT: sc->exponent = x; break;
+  case HARDENING: sc->hardening = x; break;
   case DENSITY: sp->density = x; break;
   case MODULUS: sp->modulus = x; break;
   case INITIAL_STRESS: sp->initial_stress = x; break;
@@ -188,6 +206,14 @@ static void set_key(scene *sc, int line, key_id id, const char *value)
                 "unknown kernel; allowed: cubic, quartic, wendland2, quintic");
     break;
   case DILATION: sp->dilation = x; break;
+  case INTERPOLATION:
+    if (!strcmp(value, "shepard"))
+      sc->linear_interpolation = 0;
+    else if (!strcmp(value, "linear"))
+      sc->linear_interpolation = 1;
+    else
+      key_error(sc, line, k->section, k->name, value, "allowed: shepard, linear");
+    break;
   case SHAPE:
     if (!(sp->shape = mfs_shape_find(value)))
       key_error(sc, line, k->section, k->name, value,
@@ -235,8 +261,9 @@ static void set_key(scene *sc, int line, key_id id, const char *value)
     sc->safety = x;
     break;
   case SCHEME:
-    if (mfs_scheme_parse(value, &sc->scheme) != MFS_OK)
-      key_error(sc, line, k->section, k->name, value, "allowed: leapfrog, euler, rk2, rk4");
+    sc->tsph = !strcmp(value, "tsph");
+    if (!sc->tsph && mfs_scheme_parse(value, &sc->scheme) != MFS_OK)
+      key_error(sc, line, k->section, k->name, value, "allowed: leapfrog, euler, rk2, rk4, tsph");
     break;
   case FORCE: sc->force = (int)l; break;
   case PROBES: {
@@ -252,7 +279,8 @@ static void set_key(scene *sc, int line, key_id id, const char *value)
       if (p == PROBE_COUNT)
         key_error(sc, line, k->section, k->name, value,
                   "unknown probe '%s'; allowed: v_center, u_center, kinetic_energy, "
-                  "potential_energy, total_energy, sigma_end, sigma_center, mode_amp, max_v",
+                  "potential_energy, total_energy, sigma_end, sigma_center, mode_amp, max_v, "
+                  "v_mid, v_err",
                   tok);
       if (sc->nprobes == SCENE_MAX_PROBES)
         key_error(sc, line, k->section, k->name, value, "at most %d probes", SCENE_MAX_PROBES);
@@ -355,6 +383,7 @@ static void defaults(scene *sc, const char *path)
   sc->every = 1;
   sc->mode = 1.0;
   sc->pulse_alpha = 1.0;
+  sc->yield_stress = INFINITY;
 }
 
 void scene_load(scene *sc, const char *path)
@@ -409,4 +438,78 @@ void scene_finish(scene *sc)
                       "needs [boundary] %s = velocity", k ? "right" : "left");
   if (sc->have_dt && values[SAFETY][0])
     scene_key_error(sc, "time", "safety", "give either dt or safety, not both");
+  int uses_v_err = 0;
+  for (int p = 0; p < sc->nprobes; p++)
+    uses_v_err |= sc->probe[p] == PROBE_V_ERR;
+  if (uses_v_err && (sp->periodic || sp->bc[0] != MFS_BC_FREE || sp->bc[1] != MFS_BC_FREE ||
+                     sc->perturbation > 0.0 || sc->center_velocity != 0.0 ||
+                     sp->initial_stress != 0.0 || sc->pulse_amplitude == 0.0))
+    scene_key_error(sc, "output", "probes",
+                    "v_err compares with the d'Alembert solution of a linear rod with free ends "
+                    "started by the velocity pulse alone: it needs left = right = free, "
+                    "pulse_amplitude != 0, no perturbation, center_velocity or initial_stress");
+  if (!sc->stress_velocity) {
+    if (sc->tsph)
+      scene_key_error(sc, "time", "scheme", "tsph needs [model] formulation = stress_velocity");
+    if (values[INTERPOLATION][0])
+      scene_key_error(sc, "discretization", "interpolation",
+                      "needs [model] formulation = stress_velocity");
+    static const int plastic[] = {YIELD_STRESS, FLUIDITY, EXPONENT, HARDENING};
+    for (int i = 0; i < 4; i++)
+      if (values[plastic[i]][0])
+        scene_key_error(sc, "material", keys[plastic[i]].name,
+                        "viscoplasticity needs [model] formulation = stress_velocity");
+    return;
+  }
+  /* stress-velocity bar (TSPH, lib/mfs_tsph.h) */
+  static const int unused[] = {PERIODIC, INITIAL_STRESS, SHAPE, FRAME, QUADRATURE, EQUILIBRATE,
+                               SKIN, PERTURBATION, SEED};
+  for (int i = 0; i < (int)(sizeof unused / sizeof unused[0]); i++)
+    if (values[unused[i]][0])
+      scene_key_error(sc, keys[unused[i]].section, keys[unused[i]].name,
+                      "not used by [model] formulation = stress_velocity");
+  if (values[SCHEME][0] && !sc->tsph && sc->scheme == MFS_SCHEME_LEAPFROG)
+    scene_key_error(sc, "time", "scheme",
+                    "allowed with formulation = stress_velocity: tsph, euler, rk2, rk4");
+  sc->tscheme = MFS_TSPH_TAYLOR;
+  if (values[SCHEME][0] && !sc->tsph)
+    sc->tscheme = sc->scheme == MFS_SCHEME_EULER ? MFS_TSPH_EULER
+                  : sc->scheme == MFS_SCHEME_RK2 ? MFS_TSPH_RK2
+                                                 : MFS_TSPH_RK4;
+  if (!values[KERNEL][0])
+    sp->kernel = &mfs_kernel_cubic; /* paper 001 eq. 24 */
+  if ((values[FLUIDITY][0] || values[EXPONENT][0] || values[HARDENING][0]) &&
+      !values[YIELD_STRESS][0])
+    scene_key_error(sc, "material", values[FLUIDITY][0] ? "fluidity"
+                                    : values[EXPONENT][0] ? "perzyna_exponent" : "hardening",
+                    "needs [material] yield_stress");
+  for (int p = 0; p < sc->nprobes; p++)
+    if (sc->probe[p] == PROBE_U_CENTER || sc->probe[p] == PROBE_MODE_AMP)
+      scene_key_error(sc, "output", "probes",
+                      "%s: no displacement in formulation = stress_velocity",
+                      scene_probe_names[sc->probe[p]]);
+}
+
+mfs_tsph_spec scene_tsph_spec(const scene *sc)
+{
+  const mfs_solver_spec *sp = &sc->spec;
+  mfs_tsph_spec t = {0};
+  t.n = sp->n;
+  t.length = sp->length;
+  t.density = sp->density;
+  t.modulus = sp->modulus;
+  t.yield_stress = sc->yield_stress;
+  t.fluidity = sc->fluidity;
+  t.exponent = sc->exponent;
+  t.hardening = sc->hardening;
+  t.kernel = sp->kernel;
+  t.dilation = sp->dilation;
+  t.scheme = sc->tscheme;
+  t.linear_interpolation = sc->linear_interpolation;
+  for (int k = 0; k < 2; k++) {
+    t.bc[k] = sp->bc[k];
+    t.bc_velocity[k] = sp->bc_velocity[k];
+    t.bc_until[k] = sp->bc_until[k];
+  }
+  return t;
 }

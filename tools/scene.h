@@ -7,6 +7,7 @@
 
 #include "mfstab.h"
 #include "mfs_solver.h"
+#include "mfs_tsph.h"
 
 #define SCENE_MAX_PROBES 16
 
@@ -14,6 +15,10 @@ typedef struct {
   const char *path;        /* the scene file */
   mfs_solver_spec spec;    /* model, material, discretization, boundary */
   char quadrature[32];
+  /* [model] formulation = stress_velocity: the TSPH bar (lib/mfs_tsph.h) */
+  int stress_velocity;
+  int linear_interpolation; /* [discretization] interpolation = linear */
+  double yield_stress, fluidity, exponent, hardening; /* [material] Perzyna */
   /* [initial] */
   double center_velocity;  /* velocity of the particle nearest L/2 */
   double perturbation;     /* random displacement in [-p, p] dX */
@@ -23,6 +28,8 @@ typedef struct {
   double end, dt, safety;
   int have_dt, force;
   mfs_scheme scheme;
+  int tsph;                /* scheme = tsph given */
+  mfs_tsph_scheme tscheme; /* stress_velocity: tsph | euler | rk2 | rk4 */
   /* [output] */
   int nprobes;
   int probe[SCENE_MAX_PROBES];
@@ -43,9 +50,14 @@ enum {
   PROBE_SIGMA_CENTER,
   PROBE_MODE_AMP,
   PROBE_MAX_V,
+  PROBE_V_MID,
+  PROBE_V_ERR,
   PROBE_COUNT
 };
 extern const char *const scene_probe_names[PROBE_COUNT];
+
+/* The stress-velocity spec of a scene with [model] formulation = stress_velocity. */
+mfs_tsph_spec scene_tsph_spec(const scene *sc);
 
 /* Read the file (exit 2 on any error). */
 void scene_load(scene *sc, const char *path);
