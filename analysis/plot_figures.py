@@ -125,6 +125,24 @@ def main():
         fig.savefig(os.path.join(d, name + ".png"), dpi=110)
         plt.close(fig)
 
+    # work-precision of the reference solver (analysis/bench/workprec.sh), if measured
+    files = [os.path.join(d, f) for f in ("workprec_pulse.csv", "workprec_tsph.csv")]
+    if all(os.path.exists(f) for f in files):
+        fig, axes = plt.subplots(1, 2, figsize=(10, 4))
+        for ax, f, title in zip(axes, files, ("displacement form, leapfrog", "stress-velocity form")):
+            rows = read(f)
+            for m in dict.fromkeys(r["method"] for r in rows):
+                rr = [r for r in rows if r["method"] == m]
+                ax.loglog([float(r["seconds"]) for r in rr], [float(r["error"]) for r in rr], "o-", ms=3,
+                          label=m)
+            ax.set_xlabel("run time (s)")
+            ax.set_ylabel("relative L2 velocity error at 2L/c")
+            ax.set_title(f"Gaussian pulse, {title}", fontsize=9)
+            ax.legend(fontsize=7)
+        fig.tight_layout()
+        fig.savefig(os.path.join(d, "workprec.png"), dpi=110)
+        plt.close(fig)
+
 
 if __name__ == "__main__":
     main()

@@ -1,0 +1,47 @@
+#!/usr/bin/env bash
+# Work-precision of the reference solver (a benchmark, not a test): run time
+# against the error, over refinements, written as CSV:
+#   notebooks-data/workprec_pulse.csv  Gaussian pulse (paper 000 section 9.2):
+#     SPH, RLM, KBM(si), EFG(ni), EFG(ci) with the displacement form and leapfrog,
+#     error = relative L2 velocity error (eq. 75) at t = 2L/c
+#   notebooks-data/workprec_tsph.csv   the same pulse in the stress-velocity form
+#     (paper 001): the TSPH two-step scheme against RK2 and RK4 at CFL 0.5
+# columns: problem,method,nodes,steps_per_transit,seconds,error
+# usage: analysis/bench/workprec.sh [BUILD_DIR]   (from the repository root)
+set -euo pipefail
+cd "$(dirname "$0")/../.."
+B=${1:-build}
+M=$B/tools/mfstab
+S=analysis/scenes/gaussian-pulse.ini
+T2=2.3126e-5   # 2 L / c
+tmp=$(mktemp -d)
+trap 'rm -rf "$tmp"' EXIT
+err_at() { awk -F, -v T="$T2" 'NR > 1 { d = $1 - T; d = d < 0 ? -d : d; if (NR == 2 || d < b) { b = d; e = $2 } } END { printf "%.6g", e }' "$1"; }
+secs() { local t0 t1; t0=$(date +%s.%N); "$@" >/dev/null; t1=$(date +%s.%N); echo "$t1 - $t0" | bc -l; }
+
+out=notebooks-data/workprec_pulse.csv
+echo "problem,method,nodes,steps_per_transit,seconds,error" > "$out.tmp"
+for m in "SPH sph nodal" "RLM rl nodal" "KBM(si) kb stress" "EFG(ni) mls nodal" "EFG(ci) mls gauss2"; do
+  set -- $m
+  for n in 61 121 241 481 961; do
+    s=$(secs "$M" run "$S" --set discretization.shape=$2 --set discretization.quadrature=$3 \
+          --set model.nodes=$n --set time.end=$T2 -o "$tmp/p.csv")
+    printf 'gaussian-pulse,%s,%d,,%.4f,%s\n' "$1" "$n" "$s" "$(err_at "$tmp/p.csv")" >> "$out.tmp"
+  done
+done
+mv "$out.tmp" "$out"
+
+# stress-velocity form: the scene without the displacement-form keys
+grep -v -E '^(shape|quadrature|safety|scheme|dilation|kernel) *=' "$S" > "$tmp/sv.ini"
+out=notebooks-data/workprec_tsph.csv
+echo "problem,method,nodes,steps_per_transit,seconds,error" > "$out.tmp"
+for sc in tsph rk2 rk4; do
+  for n in 61 121 241 481 961; do
+    dt=$(echo "0.5 * 0.06 / ($n - 1) / 5188.75" | bc -l)
+    s=$(secs "$M" run "$tmp/sv.ini" --set model.formulation=stress_velocity --set time.scheme=$sc \
+          --set model.nodes=$n --set time.dt=$dt --set time.end=$T2 -o "$tmp/t.csv")
+    printf 'gaussian-pulse-sv,%s,%d,%d,%.4f,%s\n' "$sc" "$n" "$((2 * (n - 1)))" "$s" "$(err_at "$tmp/t.csv")" >> "$out.tmp"
+  done
+done
+mv "$out.tmp" "$out"
+echo "wrote notebooks-data/workprec_pulse.csv notebooks-data/workprec_tsph.csv" >&2
