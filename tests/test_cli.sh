@@ -163,5 +163,21 @@ check "1D linear finite element: $msg" test -z "$msg"
 m00=$(awk -F, '$1 == 0 && $2 == 0 { print $4 }' "$out")
 check "1D lumped mass M(0,0) = '$m00', want 1 (density * dx)" awk -v m="$m00" 'BEGIN { d = m - 1; exit !(m != "" && d < 1e-12 && d > -1e-12) }'
 
+# --- the main job: mfstab reproduce -------------------------------------------
+mkdir -p "$tmp/repro"
+run reproduce --out "$tmp/repro"
+check "mfstab reproduce: exit $rc, want 0: $(head -c 300 "$err")" test "$rc" -eq 0
+bad_status=$(awk 'NR > 1 && $NF != "match" && $NF != "errata" && $NF != "data"' "$out")
+check "mfstab reproduce: rows neither match, errata nor data: $bad_status" test -z "$bad_status"
+t1=$(grep -c '^Table I .* match$' "$out" || true)
+check "mfstab reproduce: $t1 Table I columns match, want 4 (every printed entry, from mfstab stencil)" test "$t1" -eq 4
+check "mfstab reproduce: Table II Eulerian stress points listed as errata (docs/errata.md E1)" grep -q 'Table II stress points, Eulerian kernel .*errata$' "$out"
+for f in table1_nodal table1_gauss2 table1_gauss1 table1_stress-quad table2 fig03 fig04 fig09 fig10 \
+         fig11_alpha0.01 fig13 fig14a fig14b fig15a fig15b fig15c fig15d fig17_cubic fig18_cubic; do
+  check "mfstab reproduce: $f.csv missing or empty" test -s "$tmp/repro/$f.csv"
+done
+check "mfstab reproduce: NaN or inf in a CSV" bash -c "! grep -qiE 'nan|inf' $tmp/repro/*.csv"
+rm -rf "$tmp/repro"
+
 echo "test_cli: $pass passed, $fail failed"
 [ "$fail" -eq 0 ]
