@@ -171,12 +171,10 @@ static void row_accumulate(const mfs_disp_plan *dp, const mfs_plan *pl, size_t I
           if (K == q->node[Q])
             a->G += w * lapI;
         } else {
-          double xKI = pl->p->dim == 1 ? 0.0 : 0.0;
-          double dQK[3], dQI[3];
+          double dQK[3], dQI[3]; /* x_K - x_I through the point, minimum image */
           mfs_box_delta(&pl->p->box, q->x + Q * dim, pl->p->x + (size_t)K * dim, dQK);
           mfs_box_delta(&pl->p->box, q->x + Q * dim, pl->p->x + I * dim, dQI);
-          xKI = dQK[0] - dQI[0];
-          double uK = (1.0 - 1.0 / F) * xKI;
+          double uK = (1.0 - 1.0 / F) * (dQK[0] - dQI[0]); /* eq. 92 */
           a->G += w * lapI * F * (fk[0] - fk[1] * uK);
         }
       }
