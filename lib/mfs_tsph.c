@@ -400,6 +400,17 @@ static int rhs(const mfs_tsph *s, const double *Y, double *K)
   return MFS_OK;
 }
 
+/* One Runge-Kutta stage: Y = U + h k with the boundary values at time t,
+ * and its right-hand side kout. */
+static int stage(mfs_tsph *s, const double *U, const double *k, double h, double t, double *Y,
+                 double *kout)
+{
+  for (size_t i = 0; i < 4 * s->n; i++)
+    Y[i] = U[i] + h * k[i];
+  apply_bc(s, Y, t);
+  return rhs(s, Y, kout);
+}
+
 static int rk_step(mfs_tsph *s)
 {
   size_t m = 4 * s->n;
@@ -414,29 +425,15 @@ static int rk_step(mfs_tsph *s)
       U[i] += dt * k1[i];
     break;
   case MFS_TSPH_RK2:
-    for (size_t i = 0; i < m; i++)
-      Y[i] = U[i] + 0.5 * dt * k1[i];
-    apply_bc(s, Y, t + 0.5 * dt);
-    if ((st = rhs(s, Y, k2)) != MFS_OK)
+    if ((st = stage(s, U, k1, 0.5 * dt, t + 0.5 * dt, Y, k2)) != MFS_OK)
       return st;
     for (size_t i = 0; i < m; i++)
       U[i] += dt * k2[i];
     break;
   default: /* RK4 */
-    for (size_t i = 0; i < m; i++)
-      Y[i] = U[i] + 0.5 * dt * k1[i];
-    apply_bc(s, Y, t + 0.5 * dt);
-    if ((st = rhs(s, Y, k2)) != MFS_OK)
-      return st;
-    for (size_t i = 0; i < m; i++)
-      Y[i] = U[i] + 0.5 * dt * k2[i];
-    apply_bc(s, Y, t + 0.5 * dt);
-    if ((st = rhs(s, Y, k3)) != MFS_OK)
-      return st;
-    for (size_t i = 0; i < m; i++)
-      Y[i] = U[i] + dt * k3[i];
-    apply_bc(s, Y, t + dt);
-    if ((st = rhs(s, Y, k4)) != MFS_OK)
+    if ((st = stage(s, U, k1, 0.5 * dt, t + 0.5 * dt, Y, k2)) != MFS_OK ||
+        (st = stage(s, U, k2, 0.5 * dt, t + 0.5 * dt, Y, k3)) != MFS_OK ||
+        (st = stage(s, U, k3, dt, t + dt, Y, k4)) != MFS_OK)
       return st;
     for (size_t i = 0; i < m; i++)
       U[i] += dt / 6.0 * (k1[i] + 2.0 * k2[i] + 2.0 * k3[i] + k4[i]);
