@@ -1,6 +1,8 @@
 /* Taylor-SPH for the 1D stress-velocity bar (see mfs_tsph.h). */
 #include "mfs_tsph.h"
 
+#include <complex.h>
+#undef I /* particle indices are I, J; the imaginary unit is _Complex_I */
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
@@ -22,6 +24,7 @@ struct mfs_tsph_work {
   double *U;          /* 4n: sigma, v, sy, evp */
   double *U0;         /* 4n: initial state (set_state) for reset */
   double *tmp;        /* 5 * 4n + 6 nv: stages and Taylor half-step values */
+  double *q;          /* 2n: sigma + viscous stress where the stress lives, v_x */
   op rv, vr, rr;      /* real->virtual, virtual->real (taylor); real->real (others) */
 };
 
@@ -145,6 +148,7 @@ void mfs_tsph_free(mfs_tsph *s)
     free(w->U);
     free(w->U0);
     free(w->tmp);
+    free(w->q);
     op_free(&w->rv);
     op_free(&w->vr);
     op_free(&w->rr);
@@ -158,7 +162,8 @@ static int spec_ok(const mfs_tsph_spec *sp)
   if (sp->n < 3 || sp->n > 100000000 || !(sp->length > 0) || !(sp->density > 0) ||
       !(sp->modulus > 0) || !(sp->yield_stress > 0) || !(sp->fluidity >= 0) ||
       !isfinite(sp->fluidity) || !(sp->exponent >= 0) || !isfinite(sp->hardening) ||
-      !(sp->dilation > 0) || !isfinite(sp->dilation) || (unsigned)sp->scheme > MFS_TSPH_RK4)
+      !(sp->dilation > 0) || !isfinite(sp->dilation) || (unsigned)sp->scheme > MFS_TSPH_RK4 ||
+      !(sp->viscosity >= 0) || !isfinite(sp->viscosity))
     return 0;
   for (int k = 0; k < 2; k++)
     if ((unsigned)sp->bc[k] > MFS_BC_VELOCITY || !isfinite(sp->bc_velocity[k]))
@@ -194,7 +199,8 @@ mfs_tsph *mfs_tsph_alloc(const mfs_tsph_spec *spec, int *status)
   w->U = calloc(4 * n, sizeof *w->U);
   w->U0 = calloc(4 * n, sizeof *w->U0);
   w->tmp = calloc(20 * n + 6 * (n - 1), sizeof *w->tmp);
-  if (!w->X || !w->vol || !w->Xv || !w->volv || !w->U || !w->U0 || !w->tmp)
+  w->q = calloc(2 * n, sizeof *w->q);
+  if (!w->X || !w->vol || !w->Xv || !w->volv || !w->U || !w->U0 || !w->tmp || !w->q)
     goto fail;
   for (size_t I = 0; I < n; I++) {
     w->X[I] = spec->length * (double)I / (double)(n - 1);
@@ -343,6 +349,7 @@ static int taylor_step(mfs_tsph *s)
   size_t n = s->n, nv = s->nv;
   double *sig = w->U, *v = w->U + n, *sy = w->U + 2 * n, *ev = w->U + 3 * n;
   double E = sp->modulus, rho = sp->density, dt = s->dt;
+  double eta = sp->viscosity * rho * sqrt(E / rho) * s->dx;
   /* real-particle sources at t^n */
   double *Ss = w->tmp, *Ssy = Ss + n, *Sev = Ssy + n;
   for (size_t I = 0; I < n; I++)
@@ -358,6 +365,7 @@ static int taylor_step(mfs_tsph *s)
     hs[J] = s0 + 0.5 * dt * (E * vx + op_interp(&w->rv, J, Ss));
     hv[J] = v0 + 0.5 * dt * sx / rho;
     hy[J] = y0 + 0.5 * dt * op_interp(&w->rv, J, Ssy);
+    w->q[J] = hs[J] + eta * vx; /* the stress of the momentum equation */
   }
   for (size_t J = 0; J < nv; J++)
     if (source(sp, hs[J], hy[J], &Vs[J], &Vsy[J], &Vev[J]) != MFS_OK)
@@ -367,10 +375,10 @@ static int taylor_step(mfs_tsph *s)
   for (size_t I = 0; I < n; I++) {
     double fs, fv;
     if (!prescribed(s, I, 0, th, &fs))
-      fs = op_interp(&w->vr, I, hs);
+      fs = op_interp(&w->vr, I, w->q);
     if (!prescribed(s, I, 1, th, &fv))
       fv = op_interp(&w->vr, I, hv);
-    double sx = op_grad(&w->vr, I, hs, fs), vx = op_grad(&w->vr, I, hv, fv);
+    double sx = op_grad(&w->vr, I, w->q, fs), vx = op_grad(&w->vr, I, hv, fv);
     sig[I] += dt * (E * vx + op_interp(&w->vr, I, Vs));
     v[I] += dt * sx / rho;
     sy[I] += dt * op_interp(&w->vr, I, Vsy);
@@ -386,12 +394,17 @@ static int rhs(const mfs_tsph *s, const double *Y, double *K)
   const mfs_tsph_spec *sp = &s->spec;
   size_t n = s->n;
   const op *o = &s->w->rr;
+  double eta = sp->viscosity * sp->density * sqrt(sp->modulus / sp->density) * s->dx;
+  double *q = s->w->q, *vxs = q + n, dummy;
+  for (size_t I = 0; I < n; I++) {
+    vxs[I] = op_grad(o, I, Y + n, Y[n + I]);
+    q[I] = prescribed(s, I, 0, 0.0, &dummy) ? Y[I] : Y[I] + eta * vxs[I];
+  }
   for (size_t I = 0; I < n; I++) {
     double ss, ssy, sev;
     if (source(sp, Y[I], Y[2 * n + I], &ss, &ssy, &sev) != MFS_OK)
       return MFS_EDOMAIN;
-    double sx = op_grad(o, I, Y, Y[I]), vx = op_grad(o, I, Y + n, Y[n + I]);
-    double dummy;
+    double sx = op_grad(o, I, q, q[I]), vx = vxs[I];
     K[I] = prescribed(s, I, 0, 0.0, &dummy) ? 0.0 : sp->modulus * vx + ss;
     K[n + I] = prescribed(s, I, 1, 0.0, &dummy) ? 0.0 : sx / sp->density;
     K[2 * n + I] = ssy;
@@ -479,4 +492,111 @@ void mfs_tsph_energy(const mfs_tsph *s, double *kinetic, double *potential)
   }
   *kinetic = k;
   *potential = p;
+}
+
+/* Symbols of the corrected-SPH interpolation (eq. 30) and gradient (eq. 35)
+ * on the uniform lattice at wavenumber theta (per dx): sources at offsets
+ * (j + off) dx, |offset| < a.  The weights sum_J g_IJ vanish on the
+ * symmetric lattice, so the value f_I used in eq. 35 drops out. */
+static void symbols(const mfs_kernel_type *k, double a, double dx, double off, double th,
+                    double complex *P, double complex *D)
+{
+  double sw = 0.0, sg = 0.0;
+  double complex pi = 0.0, gi = 0.0;
+  int jmax = (int)ceil(a / dx) + 1;
+  for (int j = -jmax; j <= jmax; j++) {
+    double d = ((double)j + off) * dx;
+    if (!(fabs(d) < a))
+      continue;
+    mfs_kernel_value kv = mfs_kernel_radial(k, 1, a, fabs(d));
+    double wg = d > 0 ? -kv.dW : d < 0 ? kv.dW : 0.0;
+    double complex e = cexp(_Complex_I * th * d / dx);
+    sw += kv.W;
+    sg += d * wg;
+    pi += kv.W * e;
+    gi += wg * e;
+  }
+  *P = pi / sw;
+  *D = gi / sg;
+}
+
+/* Eigenvalues of the complex 2 x 2 matrix [a b; c d], as m +- sqrt(delta^2
+ * + bc) with m and delta the half sum and half difference of the diagonal:
+ * no cancellation between the squared trace and the determinant. */
+static void eig2(double complex a, double complex b, double complex c, double complex d,
+                 double complex *l1, double complex *l2)
+{
+  double complex m = 0.5 * (a + d), h = 0.5 * (a - d), r = csqrt(h * h + b * c);
+  *l1 = m + r;
+  *l2 = m - r;
+}
+
+/* Stability polynomial of a Runge-Kutta scheme of degree deg at z. */
+static double complex rk_poly(int deg, double complex z)
+{
+  double complex r = 1.0, t = 1.0;
+  for (int k = 1; k <= deg; k++) {
+    t *= z / (double)k;
+    r += t;
+  }
+  return r;
+}
+
+/* max over theta of the spectral radius of G(theta) at step dt. */
+static double growth(const mfs_tsph *s, double dt)
+{
+  const mfs_tsph_spec *sp = &s->spec;
+  double E = sp->modulus, rho = sp->density, dx = s->dx;
+  double eta = sp->viscosity * rho * sqrt(E / rho) * dx;
+  int taylor = sp->scheme == MFS_TSPH_TAYLOR;
+  int deg = sp->scheme == MFS_TSPH_EULER ? 1 : sp->scheme == MFS_TSPH_RK2 ? 2 : 4;
+  double a = taylor ? sp->dilation * 0.5 * dx : sp->dilation * dx;
+  double gmax = 0.0;
+  const int nth = 512;
+  for (int i = 0; i <= nth; i++) {
+    double th = M_PI * (double)i / nth;
+    double complex P, D, l1, l2, g1, g2;
+    if (taylor) {
+      /* real -> virtual and virtual -> real: the same half-integer offsets;
+       * G = I + Mt, Mt = dt D (P A + dt/2 D A^2 + [0 0; 0 eta D/rho]) */
+      symbols(sp->kernel, a, dx, 0.5, th, &P, &D);
+      double complex h = 0.5 * dt * D * E / rho;
+      eig2(dt * D * h, dt * D * P * E, dt * D * P / rho, dt * D * (h + eta * D / rho), &l1, &l2);
+      g1 = 1.0 + l1;
+      g2 = 1.0 + l2;
+    } else {
+      /* G = R(dt L), L = [0 E D; D/rho eta D^2/rho] */
+      symbols(sp->kernel, a, dx, 0.0, th, &P, &D);
+      eig2(0.0, dt * E * D, dt * D / rho, dt * eta * D * D / rho, &l1, &l2);
+      g1 = rk_poly(deg, l1);
+      g2 = rk_poly(deg, l2);
+    }
+    gmax = fmax(gmax, fmax(cabs(g1), cabs(g2)));
+  }
+  return gmax;
+}
+
+double mfs_tsph_dt_stable(const mfs_tsph *s)
+{
+  const double tol = 1e-12, h = s->dt_cfl / 100.0;
+  double lo = 0.0, hi = 0.0;
+  for (int k = 1; k <= 1600; k++) {
+    if (growth(s, h * k) > 1.0 + tol) {
+      hi = h * k;
+      break;
+    }
+    lo = h * k;
+  }
+  if (hi == 0.0)
+    return lo;
+  if (lo == 0.0)
+    return 0.0;
+  while (hi - lo > 1e-10 * hi) {
+    double mid = 0.5 * (lo + hi);
+    if (growth(s, mid) > 1.0 + tol)
+      hi = mid;
+    else
+      lo = mid;
+  }
+  return lo;
 }

@@ -37,7 +37,31 @@
  * MFS_TSPH_EULER, _RK2 (midpoint), _RK4: the semi-discrete system of the
  * same corrected SPH on the real particles only (support a = D dx, h0 = dx at
  * D = 2), integrated by the standard schemes (the comparison of paper 001
- * section 4.1.1, Figs 5-6).  Boundary values are imposed at every stage. */
+ * section 4.1.1, Figs 5-6).  Boundary values are imposed at every stage.
+ *
+ * Artificial viscosity (not in paper 001; spec.viscosity = alpha, 0 gives
+ * the paper's scheme): the momentum equation uses sigma + q with the viscous
+ * stress q = alpha rho c dx v_x (Landshoff's linear viscosity, both signs of
+ * v_x), q evaluated where the stress is: at the virtual particles at t^n
+ * for the Taylor step, at the real particles for the others; q = 0 where
+ * the stress is prescribed (free end).  The paper's scheme overshoots 19%
+ * at the fixed end of the elastic bar (docs/errata.md E8); alpha = 0.03
+ * brings it to 4.4% at c dt/dx = 0.970 and costs the plateau 0.1%.
+ *
+ * Stable step (mfs_tsph_dt_stable): the von Neumann limit of the interior
+ * scheme on the uniform lattice, the largest dt for which every eigenvalue
+ * of the 2 x 2 amplification matrix G(theta) of (sigma, v) has modulus
+ * <= 1 + 1e-12 for all theta.  Taylor step, with the staggered symbols P
+ * (interpolation, eq. 30) and Ds (gradient, eq. 35) and A = [0 E; 1/rho 0]:
+ *   G = I + dt Ds (P A + dt/2 Ds A^2 + [0 0; 0 eta Ds/rho]),  eta = alpha rho c dx;
+ * at D = 2 and alpha = 0 this is Lax-Wendroff, stable for c dt <= dx.  The
+ * others: G = R(dt L) with L = [0 E D; D/rho eta D^2/rho], D the collocated
+ * gradient symbol and R the scheme's stability polynomial.  Without
+ * viscosity L has imaginary eigenvalues, so forward Euler and the midpoint
+ * RK2 are unstable for every dt (dt_stable = 0) and RK4 is stable for
+ * c dt |D| <= 2 sqrt(2).  Boundaries are not part of this analysis: the limit is
+ * necessary, not sufficient (the collocated operator has growing boundary
+ * modes at any step, docs/errata.md E8). */
 #ifndef MFS_TSPH_H
 #define MFS_TSPH_H
 
@@ -64,6 +88,7 @@ typedef struct {
   const mfs_kernel_type *kernel; /* NULL: cubic B-spline (eq. 24) */
   double dilation;        /* D > 0: a = D dx/2 (taylor), D dx (others) */
   mfs_tsph_scheme scheme;
+  double viscosity;       /* artificial viscosity alpha >= 0 (0: the paper) */
   int linear_interpolation; /* 0: eq. 30 (Shepard, the paper); 1: eq. 30 plus
                           the first-order term it drops (exact for linear
                           fields; differs only next to the ends, where the
@@ -111,6 +136,13 @@ int mfs_tsph_set_state(mfs_tsph *s, const double *sigma, const double *v);
  * decides (Taylor step: c dt <= dx at D = 2; forward Euler is unstable
  * for any dt on this central operator). */
 int mfs_tsph_set_dt(mfs_tsph *s, double dt);
+
+/* The von Neumann stable step of the interior scheme (see above), in
+ * seconds; 0 when no positive step is stable (euler, rk2 without
+ * viscosity).  Found by a scan in steps of dt_cfl/100 up to 16 dt_cfl and
+ * bisection to 1e-10 relative; a scheme stable beyond 16 dt_cfl gets
+ * 16 dt_cfl. */
+double mfs_tsph_dt_stable(const mfs_tsph *s);
 
 /* One step of spec.scheme.  MFS_OK; MFS_EDOMAIN on a non-finite value or a
  * yield stress driven to <= 0 by softening. */

@@ -21,7 +21,9 @@ static const char help[] =
   "  [model]          nodes*, length* (m), periodic (0), formulation (displacement |\n"
   "                   stress_velocity: the TSPH bar of lib/mfs_tsph.h, schemes tsph (default),\n"
   "                   euler, rk2, rk4; [material] yield_stress, fluidity, perzyna_exponent,\n"
-  "                   hardening; [discretization] interpolation (shepard | linear))\n"
+  "                   hardening; [discretization] interpolation (shepard | linear),\n"
+  "                   artificial_viscosity (0: alpha of q = alpha rho c dx v_x); stable\n"
+  "                   step from the von Neumann limit of the scheme)\n"
   "  [material]       density* (kg/m^3), modulus* E (Pa), initial_stress S0 (0 Pa)\n"
   "                   S = E (F^2-1)/2 + S0, P = F S\n"
   "  [discretization] kernel (quartic), dilation D (2), shape (mls; sph shepard kb rl),\n"
@@ -151,7 +153,22 @@ static int run_tsph(scene *sc, const char *outpath)
   mfs_tsph *s = mfs_tsph_alloc(&spec, &st);
   if (!s)
     die_tsph(sc, st, 0.0);
-  if (mfs_tsph_set_dt(s, sc->have_dt ? sc->dt : sc->safety * s->dt_cfl) != MFS_OK)
+  double dts = mfs_tsph_dt_stable(s);
+  if (!(dts > 0.0) && !(sc->have_dt && sc->force)) {
+    mfs_tsph_free(s);
+    scene_key_error(sc, "time", "scheme",
+                    "%s is unstable for every dt on this central operator (von Neumann); "
+                    "set [discretization] artificial_viscosity > 0, or [time] dt and force = 1",
+                    mfs_tsph_scheme_name(spec.scheme));
+  }
+  if (sc->have_dt && sc->dt > dts * (1.0 + 1e-9) && !sc->force) {
+    mfs_tsph_free(s);
+    scene_key_error(sc, "time", "dt",
+                    "above the von Neumann stability limit %.6g s of %s (lib/mfs_tsph.h); "
+                    "lower it or set [time] force = 1",
+                    dts, mfs_tsph_scheme_name(spec.scheme));
+  }
+  if (mfs_tsph_set_dt(s, sc->have_dt ? sc->dt : sc->safety * dts) != MFS_OK)
     die_tsph(sc, MFS_EINVAL, 0.0);
   size_t n = s->n;
   double *v0 = calloc(n, sizeof *v0);

@@ -23,7 +23,7 @@ typedef enum { K_INT, K_POS, K_NONNEG, K_REAL, K_BOOL, K_WORD } key_type;
 typedef enum {
   /* [model] */ NODES, LENGTH, PERIODIC, FORMULATION,
   /* [material] */ DENSITY, MODULUS, INITIAL_STRESS, YIELD_STRESS, FLUIDITY, EXPONENT, HARDENING,
-  /* [discretization] */ INTERPOLATION, KERNEL, DILATION, SHAPE, FRAME, QUADRATURE, EQUILIBRATE, SKIN,
+  /* [discretization] */ INTERPOLATION, VISCOSITY, KERNEL, DILATION, SHAPE, FRAME, QUADRATURE, EQUILIBRATE, SKIN,
   /* [initial] */ CENTER_VELOCITY, PERTURBATION, SEED, PULSE_AMPLITUDE, PULSE_ALPHA, PULSE_CENTER,
   /* [boundary] */ LEFT, RIGHT, LEFT_VELOCITY, RIGHT_VELOCITY, LEFT_UNTIL, RIGHT_UNTIL,
   /* [time] */ END, DT, SAFETY, SCHEME, FORCE,
@@ -50,6 +50,7 @@ static const key_def keys[NKEYS] = {
   [EXPONENT] = {"material", "perzyna_exponent", K_NONNEG, 0},
   [HARDENING] = {"material", "hardening", K_REAL, 0},
   [INTERPOLATION] = {"discretization", "interpolation", K_WORD, 0},
+  [VISCOSITY] = {"discretization", "artificial_viscosity", K_NONNEG, 0},
   [KERNEL] = {"discretization", "kernel", K_WORD, 0},
   [DILATION] = {"discretization", "dilation", K_POS, 0},
   [SHAPE] = {"discretization", "shape", K_WORD, 0},
@@ -206,6 +207,7 @@ static void set_key(scene *sc, int line, key_id id, const char *value)
                 "unknown kernel; allowed: cubic, quartic, wendland2, quintic");
     break;
   case DILATION: sp->dilation = x; break;
+  case VISCOSITY: sc->viscosity = x; break;
   case INTERPOLATION:
     if (!strcmp(value, "shepard"))
       sc->linear_interpolation = 0;
@@ -454,6 +456,9 @@ void scene_finish(scene *sc)
     if (values[INTERPOLATION][0])
       scene_key_error(sc, "discretization", "interpolation",
                       "needs [model] formulation = stress_velocity");
+    if (values[VISCOSITY][0])
+      scene_key_error(sc, "discretization", "artificial_viscosity",
+                      "needs [model] formulation = stress_velocity");
     static const int plastic[] = {YIELD_STRESS, FLUIDITY, EXPONENT, HARDENING};
     for (int i = 0; i < 4; i++)
       if (values[plastic[i]][0])
@@ -506,6 +511,7 @@ mfs_tsph_spec scene_tsph_spec(const scene *sc)
   t.dilation = sp->dilation;
   t.scheme = sc->tscheme;
   t.linear_interpolation = sc->linear_interpolation;
+  t.viscosity = sc->viscosity;
   for (int k = 0; k < 2; k++) {
     t.bc[k] = sp->bc[k];
     t.bc_velocity[k] = sp->bc_velocity[k];

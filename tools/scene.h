@@ -18,6 +18,7 @@ typedef struct {
   /* [model] formulation = stress_velocity: the TSPH bar (lib/mfs_tsph.h) */
   int stress_velocity;
   int linear_interpolation; /* [discretization] interpolation = linear */
+  double viscosity;        /* [discretization] artificial_viscosity (alpha) */
   double yield_stress, fluidity, exponent, hardening; /* [material] Perzyna */
   /* [initial] */
   double center_velocity;  /* velocity of the particle nearest L/2 */
