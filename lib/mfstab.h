@@ -16,6 +16,7 @@
 #include "mfs_quad.h"
 #include "mfs_shape.h"
 #include "mfs_solver.h"
+#include "mfs_solver2d.h"
 #include "mfs_status.h"
 #include "mfs_tsph.h"
 #include "mfs_voronoi.h"
