@@ -1,12 +1,24 @@
 #!/usr/bin/env bash
 # Write the data of the reproduced tables and figures (paper 003 Tables I-II,
 # Figs 3, 4, 9, 10, 11, 13, 14, 15, 17, 18) as CSV into DIR (default
-# notebooks-data) with `mfstab reproduce`, then one PNG per figure made from
-# that CSV only (analysis/plot_figures.py, Debian's python3-matplotlib).
+# notebooks-data) with `mfstab reproduce`, the time series of the shipped
+# scenes behind paper 003 Fig. 6 and paper 001 Fig. 4 with `mfstab run`,
+# then one PNG per figure made from that CSV only (analysis/plot_figures.py,
+# Debian's python3-matplotlib).
 # usage: analysis/figures.sh [BUILD_DIR] [DIR]
 set -euo pipefail
 cd "$(dirname "$0")/.."
 build=${1:-build}
 dir=${2:-notebooks-data}
 "$build/tools/mfstab" reproduce --out "$dir"
+run() { "$build/tools/mfstab" run "$@"; }
+run analysis/scenes/rod-tensile.ini --set discretization.frame=lagrangian --set output.every=1 \
+  -o "$dir/run_rod_tensile_lagrangian.csv"
+run analysis/scenes/rod-tensile.ini --set discretization.shape=sph --set time.end=1.2e-5 \
+  --set output.every=1 -o "$dir/run_rod_tensile_eulerian_sph.csv"
+run analysis/scenes/tsph-elastic-bar.ini --set discretization.interpolation=shepard \
+  --set discretization.artificial_viscosity=0 \
+  -o "$dir/run_tsph_elastic_paper.csv"
+run analysis/scenes/tsph-elastic-bar.ini -o "$dir/run_tsph_elastic_scene.csv"
+echo "wrote the scene runs run_*.csv" >&2
 /usr/bin/python3 analysis/plot_figures.py "$dir"

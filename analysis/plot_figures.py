@@ -143,6 +143,39 @@ def main():
         fig.savefig(os.path.join(d, "workprec.png"), dpi=110)
         plt.close(fig)
 
+    # time-domain runs of the shipped scenes (analysis/figures.sh), if present
+    names = ("run_rod_tensile_lagrangian.csv", "run_rod_tensile_eulerian_sph.csv")
+    if all(os.path.exists(os.path.join(d, f)) for f in names):
+        fig, ax = plt.subplots(figsize=(6, 4))
+        for f, label in zip(names, ("Lagrangian kernel, MLS", "Eulerian kernel, SPH")):
+            rows = read(os.path.join(d, f))
+            ax.plot([1e6 * float(r["t"]) for r in rows], [float(r["v_center"]) for r in rows], label=label)
+        ax.set_xlabel("t (us)")
+        ax.set_ylabel("centre velocity (m/s)")
+        ax.set_title("Paper 003 Fig. 6: rod under tension, nodal integration", fontsize=9)
+        ax.legend(fontsize=7)
+        fig.tight_layout()
+        fig.savefig(os.path.join(d, "run_rod_tensile.png"), dpi=110)
+        plt.close(fig)
+    names = ("run_tsph_elastic_paper.csv", "run_tsph_elastic_scene.csv")
+    if all(os.path.exists(os.path.join(d, f)) for f in names):
+        fig, axes = plt.subplots(1, 2, figsize=(10, 4))
+        for f, label in zip(names, ("paper's TSPH (eq. 30, alpha = 0)", "scene: linear eq. 30, artificial viscosity 0.03")):
+            rows = read(os.path.join(d, f))
+            t = [1e3 * float(r["t"]) for r in rows]
+            axes[0].plot(t, [-float(r["sigma_end"]) / 1e5 for r in rows], label=label)
+            axes[1].plot(t, [float(r["v_mid"]) for r in rows], label=label)
+        axes[0].axhline(8.0, color="k", lw=0.6, ls=":")
+        axes[0].set_ylabel("compression at the fixed end (1e5 Pa)")
+        axes[1].set_ylabel("velocity at x = 0.5 m (m/s)")
+        for ax in axes:
+            ax.set_xlabel("t (ms)")
+            ax.legend(fontsize=7)
+        fig.suptitle("Paper 001 Fig. 4: elastic bar, 50 real particles, dt = 9.9e-5 s", fontsize=9)
+        fig.tight_layout()
+        fig.savefig(os.path.join(d, "run_tsph_elastic.png"), dpi=110)
+        plt.close(fig)
+
 
 if __name__ == "__main__":
     main()

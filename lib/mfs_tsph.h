@@ -46,7 +46,8 @@
  * for the Taylor step, at the real particles for the others; q = 0 where
  * the stress is prescribed (free end).  The paper's scheme overshoots 19%
  * at the fixed end of the elastic bar (docs/errata.md E8); alpha = 0.03
- * brings it to 4.4% at c dt/dx = 0.970 and costs the plateau 0.1%.
+ * brings it to 4.4% at c dt/dx = 0.970, and to 0.0% with the linear
+ * interpolation (the shipped scene).
  *
  * Stable step (mfs_tsph_dt_stable): the von Neumann limit of the interior
  * scheme on the uniform lattice, the largest dt for which every eigenvalue
