@@ -113,10 +113,10 @@ mfs_solver2d *mfs_solver2d_alloc(const mfs_model_spec *spec, int *status, size_t
   s->comp = comp;
   int dim = md->p->dim;
   for (size_t i = 0; i < n; i++) {
-    size_t I = md->dof[i] / (size_t)md->ndof;
+    size_t particle = md->dof[i] / (size_t)md->ndof;
     comp[i] = (int)(md->dof[i] % (size_t)md->ndof);
-    X[i] = md->p->x[I * (size_t)dim];
-    Y[i] = dim > 1 ? md->p->x[I * (size_t)dim + 1] : 0.0;
+    X[i] = md->p->x[particle * (size_t)dim];
+    Y[i] = dim > 1 ? md->p->x[particle * (size_t)dim + 1] : 0.0;
   }
   /* stable step: the proven element bound (eq. 124) if below 1.05 times
    * the power estimate (see mfs_solver.c on why both) */

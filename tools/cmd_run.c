@@ -1,5 +1,6 @@
 /* mfstab run: explicit time integration of a scene (tools/scene.h) with the
- * reference solver (lib/mfs_solver.h); writes a CSV time series of the
+ * reference solver (lib/mfs_solver.h), the TSPH bar (lib/mfs_tsph.h) or, in
+ * 2D, the linear plate (lib/mfs_solver2d.h); writes a CSV time series of the
  * probes the scene names. */
 #include <complex.h>
 #undef I
@@ -15,10 +16,11 @@
 
 static const char help[] =
   "usage: mfstab run SCENE.ini [--set SECTION.KEY=VALUE ...] [-o FILE]\n"
-  "Explicit time integration of a 1D rod of particles (lib/mfs_solver.h) described by an INI\n"
-  "scene file; writes CSV columns t followed by the probes of [output] probes.\n"
+  "Explicit time integration of a 1D rod of particles (lib/mfs_solver.h) or a 2D plate\n"
+  "(dim = 2, lib/mfs_solver2d.h) described by an INI scene file; writes CSV columns t followed\n"
+  "by the probes of [output] probes.\n"
   "Sections and keys (defaults in parentheses; * required):\n"
-  "  [model]          nodes*, length* (m), periodic (0), formulation (displacement |\n"
+  "  [model]          nodes*, length* (m), periodic (0), dim (1 | 2), formulation (displacement |\n"
   "                   stress_velocity: the TSPH bar of lib/mfs_tsph.h, schemes tsph (default),\n"
   "                   euler, rk2, rk4; [material] yield_stress, fluidity, perzyna_exponent,\n"
   "                   hardening; [discretization] interpolation (shepard | linear),\n"
@@ -41,6 +43,25 @@ static const char help[] =
   "  [output]         probes* (v_center, u_center, kinetic_energy, potential_energy,\n"
   "                   total_energy, sigma_end, sigma_center, mode_amp, max_v, v_mid, v_err), every (1),\n"
   "                   mode (1: kappa dX/pi of mode_amp = (2/n) |sum_I u_I exp(-i kappa X_I)|)\n"
+  "2D plate ([model] dim = 2: linear, Lagrangian, lumped mass, M u'' = -K u):\n"
+  "  [model]          nodes_y*, length_y* (m): nodes x nodes_y particles on length x length_y;\n"
+  "                   physics (antiplane: u_z | plane_strain: u_x, u_y)\n"
+  "  [material]       modulus* is the shear modulus mu (Pa); poisson (0.25; plane strain only,\n"
+  "                   in (-1, 0.5))\n"
+  "  [discretization] quadrature (nodal | stress-quad | stress-tri | stress-star | gaussN)\n"
+  "  [boundary]       edges (fixed | free; default fixed), or [model] periodic = 1\n"
+  "  [initial]        component (x | y; plane strain, default x) of the seeds: pulse_amplitude,\n"
+  "                   pulse_alpha, pulse_center, pulse_center_y (v = A exp(-alpha |X - c|^2));\n"
+  "                   mode_x, mode_y (integers m1, m2; periodic box), mode_amplitude A (0):\n"
+  "                   u = A cos(2 pi (m1 X/length + m2 Y/length_y)); center_velocity\n"
+  "  [output]         probes: u_center, v_center (component `component` of the particle\n"
+  "                   nearest the centre), kinetic_energy, potential_energy, total_energy,\n"
+  "                   modified_energy (kinetic + potential - dt^2/8 a'Ma, conserved by leapfrog),\n"
+  "                   max_v (largest particle speed), mode_amp ((2/N) |sum u e^{-i k.X}| over\n"
+  "                   the N dofs of `component`, k of mode_x, mode_y)\n"
+  "  refused with dim = 2: frame = eulerian, initial_stress, equilibrate, skin, perturbation,\n"
+  "                   seed, left/right keys, formulation = stress_velocity, [output] mode, the\n"
+  "                   probes sigma_end, sigma_center, v_mid, v_err\n"
   "options:\n"
   "  --set SECTION.KEY=VALUE   override a key of the scene (repeatable)\n"
   "  -o FILE                   output file (default: standard output)\n"
@@ -234,6 +255,157 @@ static int run_tsph(scene *sc, const char *outpath)
   return 0;
 }
 
+static void die_2d(const scene *sc, const mfs_model_spec *ms, int st, size_t bad, double t)
+{
+  if (st == MFS_ESINGULAR)
+    scene_key_error(sc, "discretization", "dilation",
+                    "singular moment matrix at quadrature point %zu; use a larger dilation", bad);
+  if (st == MFS_ETOOSMALL) { /* mfs_model_spec_check: the periodic box vs 2 D dx */
+    if (ms->nx <= 2.0 * ms->dilation)
+      scene_key_error(sc, "model", "nodes", "too few nodes for the support radius");
+    scene_key_error(sc, "model", "length_y",
+                    "the periodic box is not longer than two support radii (2 D dx) in y");
+  }
+  if (st == MFS_EINVAL)
+    cli_die(2, "%s: invalid combination of keys: %s", sc->path, mfs_strerror(st));
+  cli_die(1, "%s: at t = %g s: %s", sc->path, t, mfs_strerror(st));
+}
+
+/* [model] dim = 2: the linear Lagrangian plate of lib/mfs_solver2d.h
+ * (anti-plane shear or plane strain, lumped mass). */
+static int run_2d(scene *sc, const char *outpath)
+{
+  int st;
+  size_t bad = 0;
+  mfs_model_spec ms = scene_model_spec(sc);
+  mfs_solver2d *s = mfs_solver2d_alloc(&ms, &st, &bad);
+  if (!s)
+    die_2d(sc, &ms, st, bad, 0.0);
+  if (sc->have_dt) {
+    if (mfs_solver2d_set_dt(s, sc->dt, sc->force) != MFS_OK) {
+      double dcrit = s->dt_crit;
+      mfs_solver2d_free(s);
+      scene_key_error(sc, "time", "dt",
+                      "above the central-difference stability limit %.6g s (2/sqrt(lambda_max), "
+                      "eqs 120, 132); lower it or set [time] force = 1",
+                      dcrit);
+    }
+  } else {
+    mfs_solver2d_set_dt(s, sc->safety * s->dt_crit, 1);
+  }
+
+  /* initial state on the dofs of `component`: Bloch mode, pulse, centre kick */
+  size_t n = s->n;
+  int comp = sc->component;
+  double lx = ms.lx, ly = ms.ly;
+  double kx = 2.0 * M_PI * sc->mode_x / lx, ky = 2.0 * M_PI * sc->mode_y / ly;
+  double *u0 = calloc(n, sizeof *u0), *v0 = calloc(n, sizeof *v0);
+  if (!u0 || !v0)
+    cli_die(1, "out of memory");
+  for (size_t i = 0; i < n; i++) {
+    if (s->comp[i] != comp)
+      continue;
+    if (sc->mode_amplitude != 0.0)
+      u0[i] = sc->mode_amplitude * cos(kx * s->X[i] + ky * s->Y[i]);
+    if (sc->pulse_amplitude != 0.0) {
+      double dx = s->X[i] - sc->pulse_center, dy = s->Y[i] - sc->pulse_center_y;
+      if (ms.periodic) { /* the nearest image */
+        dx -= lx * round(dx / lx);
+        dy -= ly * round(dy / ly);
+      }
+      v0[i] = sc->pulse_amplitude * exp(-sc->pulse_alpha * (dx * dx + dy * dy));
+    }
+  }
+  long dc = mfs_solver2d_dof(s, mfs_solver2d_nearest(s, 0.5 * lx, 0.5 * ly), comp);
+  if (dc < 0) /* the centre particle is never on the boundary (nodes >= 3) */
+    cli_die(1, "%s: no free particle at the centre of the box", sc->path);
+  v0[dc] += sc->center_velocity;
+  if ((st = mfs_solver2d_set_state(s, u0, v0)) != MFS_OK)
+    die_2d(sc, &ms, st, 0, 0.0);
+  free(u0);
+  free(v0);
+
+  /* what the probes need: energies; e^{-i k.X} of the mode_amp dofs */
+  int need_energy = 0, need_mode = 0;
+  for (int p = 0; p < sc->nprobes; p++) {
+    int q = sc->probe[p];
+    need_energy |= q == PROBE_KINETIC || q == PROBE_POTENTIAL || q == PROBE_TOTAL ||
+                   q == PROBE_MODIFIED;
+    need_mode |= q == PROBE_MODE_AMP;
+  }
+  double *ec = NULL, *es = NULL;
+  size_t nmode = 0;
+  if (need_mode) {
+    ec = malloc(2 * n * sizeof *ec);
+    if (!ec)
+      cli_die(1, "out of memory");
+    es = ec + n;
+    for (size_t i = 0; i < n; i++) {
+      double ph = kx * s->X[i] + ky * s->Y[i];
+      int on = s->comp[i] == comp;
+      ec[i] = on ? cos(ph) : 0.0;
+      es[i] = on ? -sin(ph) : 0.0;
+      nmode += (size_t)on;
+    }
+  }
+  int ndof = ms.physics == MFS_PHYS_PLANE_STRAIN ? 2 : 1; /* (u_x, u_y) pairs: model->dof */
+
+  cli_out out;
+  cli_out_open(&out, outpath);
+  fputs("t", out.f);
+  for (int p = 0; p < sc->nprobes; p++)
+    fprintf(out.f, ",%s", scene_probe_names[sc->probe[p]]);
+  fputc('\n', out.f);
+  long nsteps = (long)ceil(sc->end / s->dt * (1.0 - 1e-12));
+  int tty = isatty(STDERR_FILENO), shown = -1;
+  for (long k = 0;; k++) {
+    if (k % sc->every == 0 || k == nsteps) {
+      double kin = 0, pot = 0, mod = 0;
+      if (need_energy)
+        mfs_solver2d_energy(s, &kin, &pot, &mod);
+      char b[40];
+      cli_fmt(b, sizeof b, s->t);
+      fputs(b, out.f);
+      for (int p = 0; p < sc->nprobes; p++) {
+        double val = 0.0;
+        switch (sc->probe[p]) {
+        case PROBE_V_CENTER: val = s->v[dc]; break;
+        case PROBE_U_CENTER: val = s->u[dc]; break;
+        case PROBE_KINETIC: val = kin; break;
+        case PROBE_POTENTIAL: val = pot; break;
+        case PROBE_TOTAL: val = kin + pot; break;
+        case PROBE_MODIFIED: val = mod; break;
+        case PROBE_MODE_AMP: {
+          double re = 0.0, im = 0.0;
+          for (size_t i = 0; i < n; i++) {
+            re += s->u[i] * ec[i];
+            im += s->u[i] * es[i];
+          }
+          val = 2.0 * hypot(re, im) / (double)nmode;
+          break;
+        }
+        case PROBE_MAX_V: /* the largest particle speed */
+          for (size_t i = 0; i + (size_t)ndof <= n; i += (size_t)ndof)
+            val = fmax(val, ndof == 2 ? hypot(s->v[i], s->v[i + 1]) : fabs(s->v[i]));
+          break;
+        default: break; /* 1D only: refused by scene_finish */
+        }
+        put(out.f, val);
+      }
+      fputc('\n', out.f);
+    }
+    if (k == nsteps)
+      break;
+    if ((st = mfs_solver2d_step(s, sc->scheme)) != MFS_OK)
+      die_2d(sc, &ms, st, 0, s->t);
+    progress(tty, k, nsteps, &shown);
+  }
+  free(ec);
+  mfs_solver2d_free(s);
+  cli_out_commit(&out);
+  return 0;
+}
+
 int cmd_run(int argc, char **argv)
 {
   const char *path = NULL, *outpath = NULL;
@@ -268,6 +440,8 @@ int cmd_run(int argc, char **argv)
   for (int i = 0; i < nsets; i++)
     scene_set(&sc, sets[i]);
   scene_finish(&sc);
+  if (sc.dim == 2)
+    return run_2d(&sc, outpath);
   if (sc.stress_velocity)
     return run_tsph(&sc, outpath);
 

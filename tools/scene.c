@@ -16,20 +16,24 @@
 
 const char *const scene_probe_names[PROBE_COUNT] = {
   "v_center", "u_center", "kinetic_energy", "potential_energy", "total_energy",
-  "sigma_end", "sigma_center", "mode_amp", "max_v", "v_mid", "v_err"};
+  "sigma_end", "sigma_center", "mode_amp", "max_v", "v_mid", "v_err", "modified_energy"};
 
 typedef enum { K_INT, K_POS, K_NONNEG, K_REAL, K_BOOL, K_WORD } key_type;
 
 typedef enum {
-  /* [model] */ NODES, LENGTH, PERIODIC, FORMULATION,
+  /* [model] */ NODES, LENGTH, PERIODIC, FORMULATION, DIM, NODES_Y, LENGTH_Y, PHYSICS,
   /* [material] */ DENSITY, MODULUS, INITIAL_STRESS, YIELD_STRESS, FLUIDITY, EXPONENT, HARDENING,
+  POISSON,
   /* [discretization] */ INTERPOLATION, VISCOSITY, KERNEL, DILATION, SHAPE, FRAME, QUADRATURE, EQUILIBRATE, SKIN,
   /* [initial] */ CENTER_VELOCITY, PERTURBATION, SEED, PULSE_AMPLITUDE, PULSE_ALPHA, PULSE_CENTER,
-  /* [boundary] */ LEFT, RIGHT, LEFT_VELOCITY, RIGHT_VELOCITY, LEFT_UNTIL, RIGHT_UNTIL,
+  PULSE_CENTER_Y, MODE_X, MODE_Y, MODE_AMPLITUDE, COMPONENT,
+  /* [boundary] */ LEFT, RIGHT, LEFT_VELOCITY, RIGHT_VELOCITY, LEFT_UNTIL, RIGHT_UNTIL, EDGES,
   /* [time] */ END, DT, SAFETY, SCHEME, FORCE,
   /* [output] */ PROBES, EVERY, MODE,
   NKEYS
 } key_id;
+
+_Static_assert(NKEYS <= SCENE_MAX_KEYS, "scene.line[] too small for the key table");
 
 typedef struct {
   const char *section, *name;
@@ -42,6 +46,10 @@ static const key_def keys[NKEYS] = {
   [LENGTH] = {"model", "length", K_POS, 1},
   [PERIODIC] = {"model", "periodic", K_BOOL, 0},
   [FORMULATION] = {"model", "formulation", K_WORD, 0},
+  [DIM] = {"model", "dim", K_INT, 0},
+  [NODES_Y] = {"model", "nodes_y", K_INT, 0},   /* required when dim = 2 */
+  [LENGTH_Y] = {"model", "length_y", K_POS, 0}, /* required when dim = 2 */
+  [PHYSICS] = {"model", "physics", K_WORD, 0},
   [DENSITY] = {"material", "density", K_POS, 1},
   [MODULUS] = {"material", "modulus", K_POS, 1},
   [INITIAL_STRESS] = {"material", "initial_stress", K_REAL, 0},
@@ -49,6 +57,7 @@ static const key_def keys[NKEYS] = {
   [FLUIDITY] = {"material", "fluidity", K_NONNEG, 0},
   [EXPONENT] = {"material", "perzyna_exponent", K_NONNEG, 0},
   [HARDENING] = {"material", "hardening", K_REAL, 0},
+  [POISSON] = {"material", "poisson", K_REAL, 0},
   [INTERPOLATION] = {"discretization", "interpolation", K_WORD, 0},
   [VISCOSITY] = {"discretization", "artificial_viscosity", K_NONNEG, 0},
   [KERNEL] = {"discretization", "kernel", K_WORD, 0},
@@ -64,12 +73,18 @@ static const key_def keys[NKEYS] = {
   [PULSE_AMPLITUDE] = {"initial", "pulse_amplitude", K_REAL, 0},
   [PULSE_ALPHA] = {"initial", "pulse_alpha", K_POS, 0},
   [PULSE_CENTER] = {"initial", "pulse_center", K_REAL, 0},
+  [PULSE_CENTER_Y] = {"initial", "pulse_center_y", K_REAL, 0},
+  [MODE_X] = {"initial", "mode_x", K_INT, 0},
+  [MODE_Y] = {"initial", "mode_y", K_INT, 0},
+  [MODE_AMPLITUDE] = {"initial", "mode_amplitude", K_REAL, 0},
+  [COMPONENT] = {"initial", "component", K_WORD, 0},
   [LEFT] = {"boundary", "left", K_WORD, 0},
   [RIGHT] = {"boundary", "right", K_WORD, 0},
   [LEFT_VELOCITY] = {"boundary", "left_velocity", K_REAL, 0},
   [RIGHT_VELOCITY] = {"boundary", "right_velocity", K_REAL, 0},
   [LEFT_UNTIL] = {"boundary", "left_until", K_NONNEG, 0},
   [RIGHT_UNTIL] = {"boundary", "right_until", K_NONNEG, 0},
+  [EDGES] = {"boundary", "edges", K_WORD, 0},
   [END] = {"time", "end", K_POS, 1},
   [DT] = {"time", "dt", K_POS, 0},
   [SAFETY] = {"time", "safety", K_POS, 0},
@@ -142,6 +157,22 @@ static mfs_bc parse_bc(const scene *sc, int line, key_id id, const char *v)
   key_error(sc, line, keys[id].section, keys[id].name, v, "allowed: fixed, free, velocity");
 }
 
+/* Whether quadrature rule `name` applies to the lattice of dimension dim
+ * (1: line, 2: square). */
+static int quad_applies(const char *name, int dim)
+{
+  mfs_quad_rule r;
+  return mfs_quad_rule_parse(name, &r) == MFS_OK &&
+         mfs_quad_rule_check(&r, dim, dim == 1 ? MFS_LATTICE_LINE : MFS_LATTICE_SQUARE) == MFS_OK;
+}
+
+static const char *quad_allowed(int dim)
+{
+  return dim == 2 ? "allowed with [model] dim = 2: nodal, stress-quad, stress-tri, stress-star, "
+                    "gauss1 .. gauss10"
+                  : "allowed: nodal, stress, gauss1 .. gauss10";
+}
+
 static void set_key(scene *sc, int line, key_id id, const char *value)
 {
   const key_def *k = &keys[id];
@@ -186,6 +217,52 @@ static void set_key(scene *sc, int line, key_id id, const char *value)
     break;
   case LENGTH: sp->length = x; break;
   case PERIODIC: sp->periodic = (int)l; break;
+  case DIM:
+    if (l != 1 && l != 2)
+      key_error(sc, line, k->section, k->name, value, "allowed: 1, 2");
+    sc->dim = (int)l;
+    break;
+  case NODES_Y:
+    if (l < 3 || l > 100000000)
+      key_error(sc, line, k->section, k->name, value, "allowed 3 to 100000000");
+    sc->ny = (int)l;
+    break;
+  case LENGTH_Y: sc->ly = x; break;
+  case PHYSICS:
+    if (!strcmp(value, "antiplane"))
+      sc->physics = MFS_PHYS_SCALAR;
+    else if (!strcmp(value, "plane_strain"))
+      sc->physics = MFS_PHYS_PLANE_STRAIN;
+    else
+      key_error(sc, line, k->section, k->name, value, "allowed: antiplane, plane_strain");
+    break;
+  case POISSON:
+    if (!(x > -1.0 && x < 0.5))
+      key_error(sc, line, k->section, k->name, value, "must be in (-1, 0.5)");
+    sc->poisson = x;
+    break;
+  case PULSE_CENTER_Y: sc->pulse_center_y = x; break;
+  case MODE_X:
+  case MODE_Y:
+    if (l < -100000000 || l > 100000000)
+      key_error(sc, line, k->section, k->name, value, "allowed -100000000 to 100000000");
+    *(id == MODE_X ? &sc->mode_x : &sc->mode_y) = (int)l;
+    sc->have_mode = 1;
+    break;
+  case MODE_AMPLITUDE: sc->mode_amplitude = x; break;
+  case COMPONENT:
+    if (strcmp(value, "x") && strcmp(value, "y"))
+      key_error(sc, line, k->section, k->name, value, "allowed: x, y");
+    sc->component = value[0] == 'y';
+    break;
+  case EDGES:
+    if (!strcmp(value, "fixed"))
+      sc->fixed_edges = 1;
+    else if (!strcmp(value, "free"))
+      sc->fixed_edges = 0;
+    else
+      key_error(sc, line, k->section, k->name, value, "allowed: fixed, free");
+    break;
   case FORMULATION:
     if (!strcmp(value, "displacement"))
       sc->stress_velocity = 0;
@@ -229,14 +306,13 @@ static void set_key(scene *sc, int line, key_id id, const char *value)
     else
       key_error(sc, line, k->section, k->name, value, "allowed: eulerian, lagrangian");
     break;
-  case QUADRATURE: {
-    mfs_quad_rule r;
-    if (mfs_quad_rule_parse(value, &r) != MFS_OK ||
-        mfs_quad_rule_check(&r, 1, MFS_LATTICE_LINE) != MFS_OK || strlen(value) >= 32)
-      key_error(sc, line, k->section, k->name, value, "allowed: nodal, stress, gauss1 .. gauss10");
+  case QUADRATURE:
+    /* a rule of the square lattice only is checked against [model] dim by
+     * scene_finish (dim may come later); any other bad rule fails here */
+    if (strlen(value) >= 32 || (!quad_applies(value, 1) && !quad_applies(value, 2)))
+      key_error(sc, line, k->section, k->name, value, "%s", quad_allowed(sc->dim));
     strcpy(sc->quadrature, value);
     break;
-  }
   case EQUILIBRATE: sp->equilibrate = (int)l; break;
   case SKIN: sp->skin = x; break;
   case CENTER_VELOCITY: sc->center_velocity = x; break;
@@ -282,7 +358,7 @@ static void set_key(scene *sc, int line, key_id id, const char *value)
         key_error(sc, line, k->section, k->name, value,
                   "unknown probe '%s'; allowed: v_center, u_center, kinetic_energy, "
                   "potential_energy, total_energy, sigma_end, sigma_center, mode_amp, max_v, "
-                  "v_mid, v_err",
+                  "v_mid, v_err, modified_energy",
                   tok);
       if (sc->nprobes == SCENE_MAX_PROBES)
         key_error(sc, line, k->section, k->name, value, "at most %d probes", SCENE_MAX_PROBES);
@@ -386,6 +462,10 @@ static void defaults(scene *sc, const char *path)
   sc->mode = 1.0;
   sc->pulse_alpha = 1.0;
   sc->yield_stress = INFINITY;
+  sc->dim = 1;
+  sc->physics = MFS_PHYS_SCALAR;
+  sc->poisson = 0.25; /* as mfstab dispersion --poisson */
+  sc->fixed_edges = 1;
 }
 
 void scene_load(scene *sc, const char *path)
@@ -418,6 +498,96 @@ void scene_set(scene *sc, const char *assignment)
   set_key(sc, 0, (key_id)id, value);
 }
 
+/* Keys of the 1D rod that a 2D run refuses, and why. */
+static const struct {
+  key_id id;
+  const char *why;
+} not_2d[] = {
+  {INITIAL_STRESS, "2D runs have no initial stress (lib/mfs_solver2d.h: linear, unstressed)"},
+  {EQUILIBRATE, "2D runs have no initial stress to equilibrate"},
+  {SKIN, "the Eulerian neighbour skin; 2D runs are Lagrangian only"},
+  {PERTURBATION, "1D only; seed a 2D run with mode_x, mode_y, mode_amplitude or a pulse"},
+  {SEED, "1D only (the random perturbation)"},
+  {LEFT, "1D only; in 2D use [boundary] edges = fixed | free"},
+  {RIGHT, "1D only; in 2D use [boundary] edges = fixed | free"},
+  {LEFT_VELOCITY, "1D only: 2D runs have no velocity boundaries"},
+  {RIGHT_VELOCITY, "1D only: 2D runs have no velocity boundaries"},
+  {LEFT_UNTIL, "1D only: 2D runs have no velocity boundaries"},
+  {RIGHT_UNTIL, "1D only: 2D runs have no velocity boundaries"},
+  {INTERPOLATION, "the stress-velocity (TSPH) bar is 1D only"},
+  {VISCOSITY, "the stress-velocity (TSPH) bar is 1D only"},
+  {YIELD_STRESS, "viscoplasticity is 1D only (the TSPH bar)"},
+  {FLUIDITY, "viscoplasticity is 1D only (the TSPH bar)"},
+  {EXPONENT, "viscoplasticity is 1D only (the TSPH bar)"},
+  {HARDENING, "viscoplasticity is 1D only (the TSPH bar)"},
+  {MODE, "1D only; in 2D mode_amp takes the wave vector of [initial] mode_x, mode_y"},
+};
+
+/* Keys of a 2D run that a 1D run refuses. */
+static const key_id only_2d[] = {NODES_Y, LENGTH_Y, PHYSICS, POISSON, PULSE_CENTER_Y, MODE_X,
+                                 MODE_Y, MODE_AMPLITUDE, COMPONENT, EDGES};
+
+static void finish_2d(scene *sc)
+{
+  mfs_solver_spec *sp = &sc->spec;
+  static const int req[] = {NODES_Y, LENGTH_Y};
+  for (int i = 0; i < 2; i++)
+    if (!values[req[i]][0])
+      cli_die(2, "%s: [model] %s: missing; this key is required when [model] dim = 2", sc->path,
+              keys[req[i]].name);
+  if (sc->stress_velocity)
+    scene_key_error(sc, "model", "formulation",
+                    "the stress-velocity (TSPH) bar is 1D only; 2D runs are displacement form");
+  if (sp->frame == MFS_FRAME_EULERIAN)
+    scene_key_error(sc, "discretization", "frame",
+                    "2D runs are Lagrangian only (no 2D Eulerian operator in lib/mfs_solver2d.h)");
+  for (size_t i = 0; i < sizeof not_2d / sizeof not_2d[0]; i++)
+    if (values[not_2d[i].id][0])
+      scene_key_error(sc, keys[not_2d[i].id].section, keys[not_2d[i].id].name,
+                      "not used with [model] dim = 2: %s", not_2d[i].why);
+  if (sc->tsph)
+    scene_key_error(sc, "time", "scheme", "tsph is the 1D stress-velocity bar's scheme; "
+                                          "allowed with dim = 2: leapfrog, euler, rk2, rk4");
+  if (!quad_applies(sc->quadrature, 2))
+    scene_key_error(sc, "discretization", "quadrature", "%s", quad_allowed(2));
+  mfs_quad_rule r;
+  mfs_quad_rule_parse(sc->quadrature, &r);
+  if (r.kind == MFS_QK_VORONOI && sp->periodic && ((sp->n | sc->ny) & 1))
+    scene_key_error(sc, "discretization", "quadrature",
+                    "the star pattern tiles a periodic box only with even nodes and nodes_y");
+  if ((double)sp->n * sc->ny > 1e8)
+    scene_key_error(sc, "model", "nodes_y", "at most 100000000 particles (nodes * nodes_y)");
+  if (sp->periodic && values[EDGES][0])
+    scene_key_error(sc, "boundary", "edges", "no edge conditions on a periodic box "
+                                             "([model] periodic = 1)");
+  if (sc->physics != MFS_PHYS_PLANE_STRAIN) {
+    if (values[POISSON][0])
+      scene_key_error(sc, "material", "poisson", "plane strain only ([model] physics = plane_strain)");
+    if (values[COMPONENT][0])
+      scene_key_error(sc, "initial", "component",
+                      "plane strain only; anti-plane shear has the one component u_z");
+  }
+  if (values[MODE_AMPLITUDE][0] && !sc->have_mode)
+    scene_key_error(sc, "initial", "mode_amplitude", "needs [initial] mode_x or mode_y");
+  if (sc->have_mode && !sp->periodic)
+    scene_key_error(sc, "initial", values[MODE_X][0] ? "mode_x" : "mode_y",
+                    "the Bloch mode needs a periodic box ([model] periodic = 1)");
+  if (sc->have_dt && values[SAFETY][0])
+    scene_key_error(sc, "time", "safety", "give either dt or safety, not both");
+  for (int p = 0; p < sc->nprobes; p++) {
+    int q = sc->probe[p];
+    if (q == PROBE_SIGMA_END || q == PROBE_SIGMA_CENTER || q == PROBE_V_MID || q == PROBE_V_ERR)
+      scene_key_error(sc, "output", "probes",
+                      "%s is 1D only; with dim = 2: u_center, v_center, kinetic_energy, "
+                      "potential_energy, total_energy, modified_energy, max_v, mode_amp",
+                      scene_probe_names[q]);
+    if (q == PROBE_MODE_AMP && !sc->have_mode)
+      scene_key_error(sc, "output", "probes",
+                      "mode_amp needs the wave vector [initial] mode_x, mode_y");
+  }
+  sp->bc[0] = sp->bc[1] = MFS_BC_FREE; /* unused in 2D */
+}
+
 void scene_finish(scene *sc)
 {
   for (int id = 0; id < NKEYS; id++)
@@ -426,6 +596,21 @@ void scene_finish(scene *sc)
               keys[id].name);
   mfs_solver_spec *sp = &sc->spec;
   sp->quadrature = sc->quadrature;
+  if (sc->dim == 2) {
+    finish_2d(sc);
+    return;
+  }
+  for (size_t i = 0; i < sizeof only_2d / sizeof only_2d[0]; i++)
+    if (values[only_2d[i]][0])
+      scene_key_error(sc, keys[only_2d[i]].section, keys[only_2d[i]].name,
+                      "needs [model] dim = 2");
+  if (!quad_applies(sc->quadrature, 1))
+    scene_key_error(sc, "discretization", "quadrature", "%s", quad_allowed(1));
+  for (int p = 0; p < sc->nprobes; p++)
+    if (sc->probe[p] == PROBE_MODIFIED)
+      scene_key_error(sc, "output", "probes",
+                      "modified_energy (the energy the leapfrog conserves on a linear model) "
+                      "needs [model] dim = 2");
   if (sp->periodic && (values[LEFT][0] || values[RIGHT][0]))
     scene_key_error(sc, "boundary", values[LEFT][0] ? "left" : "right",
                     "no end conditions on a periodic rod ([model] periodic = 1)");
@@ -493,6 +678,30 @@ void scene_finish(scene *sc)
       scene_key_error(sc, "output", "probes",
                       "%s: no displacement in formulation = stress_velocity",
                       scene_probe_names[sc->probe[p]]);
+}
+
+mfs_model_spec scene_model_spec(const scene *sc)
+{
+  const mfs_solver_spec *sp = &sc->spec;
+  mfs_model_spec m;
+  mfs_model_spec_default(&m);
+  m.dim = 2;
+  m.nx = sp->n;
+  m.ny = sc->ny;
+  m.lx = sp->length;
+  m.ly = sc->ly;
+  m.periodic = sp->periodic;
+  m.fixed = !sp->periodic && sc->fixed_edges ? MFS_FIX_BOUNDARY : MFS_FIX_NONE;
+  m.kernel = sp->kernel;
+  m.shape = sp->shape;
+  m.dilation = sp->dilation;
+  m.quadrature = sc->quadrature;
+  m.consistent_mass = 0; /* lumped: explicit steps without a solve */
+  m.physics = sc->physics;
+  m.modulus = sp->modulus;
+  m.density = sp->density;
+  m.poisson = sc->poisson;
+  return m;
 }
 
 mfs_tsph_spec scene_tsph_spec(const scene *sc)

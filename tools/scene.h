@@ -1,7 +1,9 @@
 /* Scene files of `mfstab run`: an INI file (read with inih) describing a
- * rod, its discretization, initial and boundary conditions, the time
- * integration and the probes to record.  Validated once; every error names
- * the file, the line, the section and the key, and exits with code 2. */
+ * rod ([model] dim = 1) or a rectangle (dim = 2: anti-plane shear or plane
+ * strain, the linear Lagrangian models of lib/mfs_solver2d.h), its
+ * discretization, initial and boundary conditions, the time integration and
+ * the probes to record.  Validated once; every error names the file, the
+ * line, the section and the key, and exits with code 2. */
 #ifndef MFSTAB_SCENE_H
 #define MFSTAB_SCENE_H
 
@@ -10,6 +12,7 @@
 #include "mfs_tsph.h"
 
 #define SCENE_MAX_PROBES 16
+#define SCENE_MAX_KEYS 64
 
 typedef struct {
   const char *path;        /* the scene file */
@@ -25,6 +28,19 @@ typedef struct {
   double perturbation;     /* random displacement in [-p, p] dX */
   unsigned long seed;
   double pulse_amplitude, pulse_alpha, pulse_center; /* v = A exp(-alpha (X - c)^2) */
+  /* [model] dim = 2 (lib/mfs_solver2d.h): nodes x nodes_y particles on
+   * length x length_y; [material] modulus is the shear modulus mu */
+  int dim;
+  int ny;                  /* [model] nodes_y */
+  double ly;               /* [model] length_y */
+  mfs_physics_kind physics; /* [model] physics: antiplane | plane_strain */
+  double poisson;          /* [material] poisson (plane strain; 0.25) */
+  int fixed_edges;         /* [boundary] edges: fixed (1, default) | free (0) */
+  double pulse_center_y;   /* 2D pulse: v = A exp(-alpha |X - c|^2) */
+  int component;           /* [initial] component: 0 x (anti-plane: u_z), 1 y */
+  int have_mode;           /* mode_x or mode_y given */
+  int mode_x, mode_y;      /* Bloch mode k = 2 pi (mode_x / lx, mode_y / ly) */
+  double mode_amplitude;   /* seed u = A cos(k.X) on `component` (0: none) */
   /* [time] */
   double end, dt, safety;
   int have_dt, force;
@@ -37,7 +53,7 @@ typedef struct {
   int every;
   double mode;             /* kappa dX / pi of the mode_amp probe */
   /* where each key was set (line, or 0 for --set / default) */
-  int line[64];
+  int line[SCENE_MAX_KEYS];
 } scene;
 
 /* Probe identifiers and names. */
@@ -53,12 +69,16 @@ enum {
   PROBE_MAX_V,
   PROBE_V_MID,
   PROBE_V_ERR,
+  PROBE_MODIFIED, /* 2D: the leapfrog's conserved energy (lib/mfs_solver2d.h) */
   PROBE_COUNT
 };
 extern const char *const scene_probe_names[PROBE_COUNT];
 
 /* The stress-velocity spec of a scene with [model] formulation = stress_velocity. */
 mfs_tsph_spec scene_tsph_spec(const scene *sc);
+
+/* The model of a scene with [model] dim = 2 (lumped mass). */
+mfs_model_spec scene_model_spec(const scene *sc);
 
 /* Read the file (exit 2 on any error). */
 void scene_load(scene *sc, const char *path);
