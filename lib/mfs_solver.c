@@ -577,83 +577,22 @@ int mfs_solver_set_dt(mfs_solver *s, double dt, int force_it)
 }
 
 /* Central difference, eq. 120, in kick-drift-kick form. */
-static int step_leapfrog(mfs_solver *s)
+static int accel_cb(void *ctx, const double *u, double *a)
 {
-  double dt = s->dt, t1 = s->t + dt;
-  for (size_t I = 0; I < s->n; I++) {
-    s->v[I] += 0.5 * dt * s->a[I];
-    s->u[I] += dt * s->v[I];
-  }
-  impose(s, s->u, NULL, t1);
-  int st = accel(s, s->u, s->a);
-  if (st != MFS_OK)
-    return st;
-  for (size_t I = 0; I < s->n; I++)
-    s->v[I] += 0.5 * dt * s->a[I];
-  impose(s, NULL, s->v, t1);
-  return MFS_OK;
+  return accel(ctx, u, a);
 }
 
-/* Explicit Runge-Kutta for y' = (v, a(u)): Euler (1 stage), midpoint (2), classical (4). */
-static int step_rk(mfs_solver *s, int stages)
+static void impose_cb(void *ctx, double *u, double *v, double t)
 {
-  static const double b1[1] = {1}, b2[2] = {0, 1}, b4[4] = {1 / 6., 1 / 3., 1 / 3., 1 / 6.};
-  const double *b = stages == 1 ? b1 : stages == 2 ? b2 : b4;
-  mfs_solver_work *w = s->w;
-  size_t n = s->n;
-  double dt = s->dt;
-  memcpy(w->u0, s->u, n * sizeof *s->u);
-  memcpy(w->v0, s->v, n * sizeof *s->v);
-  for (int k = 0; k < stages; k++) {
-    double *ku = w->ku + k * n, *kv = w->kv + k * n;
-    if (k == 0) {
-      memcpy(ku, s->v, n * sizeof *ku);
-      memcpy(kv, s->a, n * sizeof *kv);
-      continue;
-    }
-    double ck = stages == 4 && k == 3 ? 1.0 : 0.5; /* a_{k,k-1} = c_k */
-    double tk = s->t + ck * dt;
-    for (size_t I = 0; I < n; I++) {
-      w->tu[I] = w->u0[I] + ck * dt * w->ku[(k - 1) * n + I];
-      ku[I] = w->v0[I] + ck * dt * w->kv[(k - 1) * n + I];
-    }
-    impose(s, w->tu, ku, tk);
-    int st = accel(s, w->tu, kv);
-    if (st != MFS_OK)
-      return st;
-  }
-  for (size_t I = 0; I < n; I++) {
-    double du = 0.0, dv = 0.0;
-    for (int k = 0; k < stages; k++) {
-      du += b[k] * w->ku[k * n + I];
-      dv += b[k] * w->kv[k * n + I];
-    }
-    s->u[I] = w->u0[I] + dt * du;
-    s->v[I] = w->v0[I] + dt * dv;
-  }
-  impose(s, s->u, s->v, s->t + dt);
-  return accel(s, s->u, s->a);
+  impose(ctx, u, v, t);
 }
 
 int mfs_solver_step(mfs_solver *s, mfs_scheme scheme)
 {
-  int st;
-  switch (scheme) {
-  case MFS_SCHEME_LEAPFROG:
-    st = step_leapfrog(s);
-    break;
-  case MFS_SCHEME_EULER:
-    st = step_rk(s, 1);
-    break;
-  case MFS_SCHEME_RK2:
-    st = step_rk(s, 2);
-    break;
-  case MFS_SCHEME_RK4:
-    st = step_rk(s, 4);
-    break;
-  default:
-    return MFS_EINVAL;
-  }
+  mfs_solver_work *w = s->w;
+  mfs_explicit_work rk = {w->u0, w->v0, w->ku, w->kv, w->tu};
+  int st = mfs_explicit_step(scheme, s->n, s->u, s->v, s->a, s->t, s->dt, &rk, accel_cb,
+                             impose_cb, s);
   if (st != MFS_OK)
     return st;
   s->t += s->dt;

@@ -40,15 +40,10 @@
 
 #include "mfs_assemble.h"
 #include "mfs_dispersion.h"
+#include "mfs_explicit.h"
 
 typedef enum { MFS_BC_FREE, MFS_BC_FIXED, MFS_BC_VELOCITY } mfs_bc;
 
-typedef enum {
-  MFS_SCHEME_LEAPFROG,
-  MFS_SCHEME_EULER,
-  MFS_SCHEME_RK2,
-  MFS_SCHEME_RK4
-} mfs_scheme;
 
 /* Name of a scheme ("leapfrog", "euler", "rk2", "rk4"); parse: MFS_EINVAL if unknown. */
 const char *mfs_scheme_name(mfs_scheme s);

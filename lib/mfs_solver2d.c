@@ -173,75 +173,16 @@ int mfs_solver2d_set_dt(mfs_solver2d *s, double dt, int force)
 }
 
 /* Central difference, eq. 120, in kick-drift-kick form. */
-static int step_leapfrog(mfs_solver2d *s)
+static int accel_cb(void *ctx, const double *u, double *a)
 {
-  double dt = s->dt;
-  for (size_t i = 0; i < s->n; i++) {
-    s->v[i] += 0.5 * dt * s->a[i];
-    s->u[i] += dt * s->v[i];
-  }
-  int st = accel(s, s->u, s->a);
-  for (size_t i = 0; i < s->n; i++)
-    s->v[i] += 0.5 * dt * s->a[i];
-  return st;
-}
-
-/* Explicit Runge-Kutta for y' = (v, a(u)): Euler (1 stage), midpoint (2),
- * classical (4); the stages of mfs_solver.c. */
-static int step_rk(mfs_solver2d *s, int stages)
-{
-  static const double b1[1] = {1}, b2[2] = {0, 1}, b4[4] = {1 / 6., 1 / 3., 1 / 3., 1 / 6.};
-  const double *b = stages == 1 ? b1 : stages == 2 ? b2 : b4;
-  mfs_solver2d_work *w = s->w;
-  size_t n = s->n;
-  double dt = s->dt;
-  memcpy(w->u0, s->u, n * sizeof *s->u);
-  memcpy(w->v0, s->v, n * sizeof *s->v);
-  memcpy(w->ku, s->v, n * sizeof *s->v);
-  memcpy(w->kv, s->a, n * sizeof *s->a);
-  for (int k = 1; k < stages; k++) {
-    double ck = stages == 4 && k == 3 ? 1.0 : 0.5; /* a_{k,k-1} = c_k */
-    double *ku = w->ku + k * n, *kv = w->kv + k * n;
-    const double *kup = ku - n, *kvp = kv - n;
-    for (size_t i = 0; i < n; i++) {
-      w->tu[i] = w->u0[i] + ck * dt * kup[i];
-      ku[i] = w->v0[i] + ck * dt * kvp[i];
-    }
-    int st = accel(s, w->tu, kv);
-    if (st != MFS_OK)
-      return st;
-  }
-  for (size_t i = 0; i < n; i++) {
-    double du = 0.0, dv = 0.0;
-    for (int k = 0; k < stages; k++) {
-      du += b[k] * w->ku[k * n + i];
-      dv += b[k] * w->kv[k * n + i];
-    }
-    s->u[i] = w->u0[i] + dt * du;
-    s->v[i] = w->v0[i] + dt * dv;
-  }
-  return accel(s, s->u, s->a);
+  return accel(ctx, u, a);
 }
 
 int mfs_solver2d_step(mfs_solver2d *s, mfs_scheme scheme)
 {
-  int st;
-  switch (scheme) {
-  case MFS_SCHEME_LEAPFROG:
-    st = step_leapfrog(s);
-    break;
-  case MFS_SCHEME_EULER:
-    st = step_rk(s, 1);
-    break;
-  case MFS_SCHEME_RK2:
-    st = step_rk(s, 2);
-    break;
-  case MFS_SCHEME_RK4:
-    st = step_rk(s, 4);
-    break;
-  default:
-    return MFS_EINVAL;
-  }
+  mfs_solver2d_work *w = s->w;
+  mfs_explicit_work rk = {w->u0, w->v0, w->ku, w->kv, w->tu};
+  int st = mfs_explicit_step(scheme, s->n, s->u, s->v, s->a, s->t, s->dt, &rk, accel_cb, NULL, s);
   if (st != MFS_OK)
     return st;
   s->t += s->dt;

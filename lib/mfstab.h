@@ -11,6 +11,7 @@
 #include "mfs_paper.h"
 #include "mfs_model.h"
 #include "mfs_eigen.h"
+#include "mfs_explicit.h"
 #include "mfs_bound.h"
 #include "mfs_particles.h"
 #include "mfs_quad.h"

@@ -1,0 +1,78 @@
+/* Explicit integrators for u'' = a(u) (see mfs_explicit.h). */
+#include "mfs_explicit.h"
+
+#include <string.h>
+
+#include "mfs_status.h"
+
+static int leapfrog(size_t n, double *u, double *v, double *a, double t1, double dt,
+                    mfs_accel_fn accel, mfs_impose_fn impose, void *ctx)
+{
+  for (size_t i = 0; i < n; i++) {
+    v[i] += 0.5 * dt * a[i];
+    u[i] += dt * v[i];
+  }
+  if (impose)
+    impose(ctx, u, NULL, t1);
+  int st = accel(ctx, u, a);
+  if (st != MFS_OK)
+    return st;
+  for (size_t i = 0; i < n; i++)
+    v[i] += 0.5 * dt * a[i];
+  if (impose)
+    impose(ctx, NULL, v, t1);
+  return MFS_OK;
+}
+
+/* Runge-Kutta with a_{k,k-1} = c_k the only nonzero stage coefficients:
+ * Euler (1 stage), midpoint (2), classical (4). */
+static int runge_kutta(int stages, size_t n, double *u, double *v, double *a, double t, double dt,
+                       const mfs_explicit_work *w, mfs_accel_fn accel, mfs_impose_fn impose,
+                       void *ctx)
+{
+  static const double b1[1] = {1}, b2[2] = {0, 1}, b4[4] = {1 / 6., 1 / 3., 1 / 3., 1 / 6.};
+  const double *b = stages == 1 ? b1 : stages == 2 ? b2 : b4;
+  memcpy(w->u0, u, n * sizeof *u);
+  memcpy(w->v0, v, n * sizeof *v);
+  memcpy(w->ku, v, n * sizeof *v);
+  memcpy(w->kv, a, n * sizeof *a);
+  for (int k = 1; k < stages; k++) {
+    double ck = stages == 4 && k == 3 ? 1.0 : 0.5;
+    double *ku = w->ku + k * n, *kv = w->kv + k * n;
+    const double *kup = ku - n, *kvp = kv - n;
+    for (size_t i = 0; i < n; i++) {
+      w->tu[i] = w->u0[i] + ck * dt * kup[i];
+      ku[i] = w->v0[i] + ck * dt * kvp[i];
+    }
+    if (impose)
+      impose(ctx, w->tu, ku, t + ck * dt);
+    int st = accel(ctx, w->tu, kv);
+    if (st != MFS_OK)
+      return st;
+  }
+  for (size_t i = 0; i < n; i++) {
+    double du = 0.0, dv = 0.0;
+    for (int k = 0; k < stages; k++) {
+      du += b[k] * w->ku[k * n + i];
+      dv += b[k] * w->kv[k * n + i];
+    }
+    u[i] = w->u0[i] + dt * du;
+    v[i] = w->v0[i] + dt * dv;
+  }
+  if (impose)
+    impose(ctx, u, v, t + dt);
+  return accel(ctx, u, a);
+}
+
+int mfs_explicit_step(mfs_scheme scheme, size_t n, double *u, double *v, double *a, double t,
+                      double dt, const mfs_explicit_work *w, mfs_accel_fn accel,
+                      mfs_impose_fn impose, void *ctx)
+{
+  switch (scheme) {
+  case MFS_SCHEME_LEAPFROG: return leapfrog(n, u, v, a, t + dt, dt, accel, impose, ctx);
+  case MFS_SCHEME_EULER: return runge_kutta(1, n, u, v, a, t, dt, w, accel, impose, ctx);
+  case MFS_SCHEME_RK2: return runge_kutta(2, n, u, v, a, t, dt, w, accel, impose, ctx);
+  case MFS_SCHEME_RK4: return runge_kutta(4, n, u, v, a, t, dt, w, accel, impose, ctx);
+  }
+  return MFS_EINVAL;
+}
