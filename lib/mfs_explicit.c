@@ -1,6 +1,7 @@
 /* Explicit integrators for u'' = a(u) (see mfs_explicit.h). */
 #include "mfs_explicit.h"
 
+#include <math.h>
 #include <string.h>
 
 #include "mfs_status.h"
@@ -68,11 +69,18 @@ int mfs_explicit_step(mfs_scheme scheme, size_t n, double *u, double *v, double 
                       double dt, const mfs_explicit_work *w, mfs_accel_fn accel,
                       mfs_impose_fn impose, void *ctx)
 {
+  int st;
   switch (scheme) {
-  case MFS_SCHEME_LEAPFROG: return leapfrog(n, u, v, a, t + dt, dt, accel, impose, ctx);
-  case MFS_SCHEME_EULER: return runge_kutta(1, n, u, v, a, t, dt, w, accel, impose, ctx);
-  case MFS_SCHEME_RK2: return runge_kutta(2, n, u, v, a, t, dt, w, accel, impose, ctx);
-  case MFS_SCHEME_RK4: return runge_kutta(4, n, u, v, a, t, dt, w, accel, impose, ctx);
+  case MFS_SCHEME_LEAPFROG: st = leapfrog(n, u, v, a, t + dt, dt, accel, impose, ctx); break;
+  case MFS_SCHEME_EULER: st = runge_kutta(1, n, u, v, a, t, dt, w, accel, impose, ctx); break;
+  case MFS_SCHEME_RK2: st = runge_kutta(2, n, u, v, a, t, dt, w, accel, impose, ctx); break;
+  case MFS_SCHEME_RK4: st = runge_kutta(4, n, u, v, a, t, dt, w, accel, impose, ctx); break;
+  default: return MFS_EINVAL;
   }
-  return MFS_EINVAL;
+  if (st != MFS_OK)
+    return st;
+  for (size_t i = 0; i < n; i++)
+    if (!isfinite(u[i]) || !isfinite(v[i]))
+      return MFS_EDOMAIN;
+  return MFS_OK;
 }

@@ -29,7 +29,8 @@ typedef struct {
 
 /* One step from t to t + dt of (u, v) with a = a(u) on entry; on return a
  * = a(u) at the new state.  impose may be NULL.  MFS_EINVAL for an unknown
- * scheme, else the status of accel. */
+ * scheme, MFS_EDOMAIN for a non-finite u or v after the step, else the
+ * status of accel. */
 int mfs_explicit_step(mfs_scheme scheme, size_t n, double *u, double *v, double *a, double t,
                       double dt, const mfs_explicit_work *w, mfs_accel_fn accel,
                       mfs_impose_fn impose, void *ctx);

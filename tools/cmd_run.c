@@ -156,6 +156,16 @@ static void progress(int tty, long k, long nsteps, int *shown)
   }
 }
 
+/* A [time] dt above the stable step `limit` (s) of `rule`, without force. */
+static _Noreturn void refuse_dt(const scene *sc, const char *rule, double limit, const char *why)
+{
+  scene_key_error(sc, "time", "dt",
+                  "above the %s stability limit %.6g s %s; lower it or set [time] force = 1", rule,
+                  limit, why);
+}
+
+static const char central_why[] = "(2/sqrt(lambda_max), eqs 120, 132)";
+
 static void die_tsph(const scene *sc, int st, double t)
 {
   if (st == MFS_ESINGULAR)
@@ -183,11 +193,10 @@ static int run_tsph(scene *sc, const char *outpath)
                     mfs_tsph_scheme_name(spec.scheme));
   }
   if (sc->have_dt && sc->dt > dts * (1.0 + 1e-9) && !sc->force) {
+    char why[64];
+    snprintf(why, sizeof why, "of %s (lib/mfs_tsph.h)", mfs_tsph_scheme_name(spec.scheme));
     mfs_tsph_free(s);
-    scene_key_error(sc, "time", "dt",
-                    "above the von Neumann stability limit %.6g s of %s (lib/mfs_tsph.h); "
-                    "lower it or set [time] force = 1",
-                    dts, mfs_tsph_scheme_name(spec.scheme));
+    refuse_dt(sc, "von Neumann", dts, why);
   }
   if (mfs_tsph_set_dt(s, sc->have_dt ? sc->dt : sc->safety * dts) != MFS_OK)
     die_tsph(sc, MFS_EINVAL, 0.0);
@@ -285,10 +294,7 @@ static int run_2d(scene *sc, const char *outpath)
     if (mfs_solver2d_set_dt(s, sc->dt, sc->force) != MFS_OK) {
       double dcrit = s->dt_crit;
       mfs_solver2d_free(s);
-      scene_key_error(sc, "time", "dt",
-                      "above the central-difference stability limit %.6g s (2/sqrt(lambda_max), "
-                      "eqs 120, 132); lower it or set [time] force = 1",
-                      dcrit);
+      refuse_dt(sc, "central-difference", dcrit, central_why);
     }
   } else {
     mfs_solver2d_set_dt(s, sc->safety * s->dt_crit, 1);
@@ -454,10 +460,7 @@ int cmd_run(int argc, char **argv)
     if (mfs_solver_set_dt(s, sc.dt, sc.force) != MFS_OK) {
       double dcrit = s->dt_crit;
       mfs_solver_free(s);
-      scene_key_error(&sc, "time", "dt",
-                      "above the central-difference stability limit %.6g s (2/sqrt(lambda_max), "
-                      "eqs 120, 132); lower it or set [time] force = 1",
-                      dcrit);
+      refuse_dt(&sc, "central-difference", dcrit, central_why);
     }
   } else {
     mfs_solver_set_dt(s, sc.safety * s->dt_crit, 1);
