@@ -5,7 +5,8 @@
 # usage: bash tests/test_cli.sh /path/to/mfstab
 # One line per failed check; the last line counts them; exit 1 on any failure.
 set -u
-M=${1:?usage: bash tests/test_cli.sh /path/to/mfstab}
+M=${1:?usage: bash tests/test_cli.sh /path/to/mfstab [scenes-dir]}
+SCENES=${2:-$(dirname "$0")/../analysis/scenes}
 tmp=$(mktemp -d)
 trap 'rm -rf "$tmp"' EXIT
 pass=0
@@ -162,6 +163,81 @@ msg=$(awk -F, '
 check "1D linear finite element: $msg" test -z "$msg"
 m00=$(awk -F, '$1 == 0 && $2 == 0 { print $4 }' "$out")
 check "1D lumped mass M(0,0) = '$m00', want 1 (density * dx)" awk -v m="$m00" 'BEGIN { d = m - 1; exit !(m != "" && d < 1e-12 && d > -1e-12) }'
+
+# --- output files: never replace a special file, honour the umask, no temporary left
+o=$tmp/outs
+mkdir -p "$o"
+no_tmp_in() { ! compgen -G "$1/*.tmp*" >/dev/null; }
+run stencil
+want=$(cat "$out")
+mkfifo "$o/fifo"
+(timeout 20 cat "$o/fifo" >"$o/from_fifo") &
+reader=$!
+run stencil -o "$o/fifo"
+wait "$reader"
+check "-o FIFO: exit $rc, want 0: $(head -c 200 "$err")" test "$rc" -eq 0
+check "-o FIFO: the FIFO was replaced" test -p "$o/fifo"
+check "-o FIFO: the reader did not get the CSV" test "$(cat "$o/from_fifo")" = "$want"
+if [ "$(id -u)" -eq 0 ]; then
+  mknod "$o/null" c 1 3
+  run stencil -o "$o/null"
+  check "-o device: exit $rc, want 0" test "$rc" -eq 0
+  check "-o device: the device node was replaced" test -c "$o/null"
+fi
+run stencil -o /dev/null
+check "-o /dev/null: exit $rc, want 0" test "$rc" -eq 0
+check "-o /dev/null: no longer a character device" test -c /dev/null
+echo old >"$o/target.csv"
+chmod 640 "$o/target.csv"
+ln -s target.csv "$o/link.csv"
+run stencil -o "$o/link.csv"
+check "-o symlink: exit $rc, want 0" test "$rc" -eq 0
+check "-o symlink: the link was replaced by a file" test -L "$o/link.csv"
+check "-o symlink: the target does not hold the CSV" test "$(cat "$o/target.csv")" = "$want"
+check "-o symlink: the target lost its mode 640" test "$(stat -c %a "$o/target.csv")" = 640
+ln -s new.csv "$o/dangling.csv"
+run stencil -o "$o/dangling.csv"
+check "-o dangling symlink: exit $rc, want 0" test "$rc" -eq 0
+check "-o dangling symlink: the target was not created" test "$(cat "$o/new.csv" 2>/dev/null)" = "$want"
+for m in 022 027 002; do
+  (umask $m && "$M" stencil -o "$o/u$m.csv")
+  mode=$(stat -c %a "$o/u$m.csv")
+  check "-o with umask $m: mode $mode, want $(printf '%o' $((0666 & ~0$m)))" test "$mode" = "$(printf '%o' $((0666 & ~0$m)))"
+done
+run stencil -o "$o/missing/x.csv"
+check "-o in a missing directory: exit $rc, want 2" test "$rc" -eq 2
+check "-o in a missing directory: $(nlines "$err") lines on stderr, want 1" test "$(nlines "$err")" -eq 1
+run stencil -o "$o"
+check "-o DIRECTORY: exit $rc, want 2" test "$rc" -eq 2
+check "-o DIRECTORY: message does not say it is a directory" grep -q "is a directory" "$err"
+mkdir "$o/ro"
+chmod 555 "$o/ro"
+run stencil -o "$o/ro/x.csv"
+if [ "$(id -u)" -eq 0 ]; then
+  check "-o in a read-only directory as root: exit $rc, want 0" test "$rc" -eq 0
+else
+  check "-o in a read-only directory: exit $rc, want 2" test "$rc" -eq 2
+  check "-o in a read-only directory: a file was created" test ! -e "$o/ro/x.csv"
+fi
+check "-o in a read-only directory: temporary file left behind" no_tmp_in "$o/ro"
+chmod 755 "$o/ro"
+# a signal halfway: the long run is killed once its temporary file exists
+for sig in INT TERM HUP PIPE; do
+  "$M" run "$SCENES/rod-growth.ini" --set model.nodes=20000 --set model.length=20 \
+    --set time.end=1 --set discretization.frame=lagrangian --set output.every=100 \
+    -o "$o/sig.csv" >/dev/null 2>&1 &
+  pid=$!
+  for _ in $(seq 200); do compgen -G "$o/sig.csv.tmp*" >/dev/null && break; sleep 0.05; done
+  seen=$(compgen -G "$o/sig.csv.tmp*" >/dev/null && echo 1 || echo 0)
+  kill -"$sig" "$pid"
+  wait "$pid"
+  src=$?
+  check "SIG$sig halfway: the temporary file never appeared" test "$seen" -eq 1
+  check "SIG$sig halfway: exit $src, want death by the signal" test "$src" -gt 128
+  check "SIG$sig halfway: temporary file left behind" no_tmp_in "$o"
+  check "SIG$sig halfway: an output file was written" test ! -e "$o/sig.csv"
+done
+rm -rf "$o"
 
 # --- the main job: mfstab reproduce -------------------------------------------
 mkdir -p "$tmp/repro"

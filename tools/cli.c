@@ -1,20 +1,25 @@
 #include "cli.h"
 
 #include <errno.h>
+#include <fcntl.h>
+#include <signal.h>
 #include <math.h>
 #include <stdarg.h>
 #include <stdlib.h>
 #include <string.h>
+#include <sys/stat.h>
 #include <unistd.h>
 
 const char *cli_command = "";
 
 static cli_out *current_out = NULL;
+static void remove_pending(void);
 
 _Noreturn void cli_die(int code, const char *fmt, ...)
 {
   if (current_out)
     cli_out_abort(current_out);
+  remove_pending();
   va_list ap;
   va_start(ap, fmt);
   fprintf(stderr, "mfstab %s: ", cli_command);
@@ -222,6 +227,106 @@ _Noreturn void cli_die_status(int status, const cli_disc *d, const char *what)
   cli_die(1, "%s: %s", what, mfs_strerror(status));
 }
 
+/* ---- Output files ----------------------------------------------------
+ * A regular file or a new path is written through a temporary file in the
+ * same directory and renamed on success, so a failed run never leaves a half
+ * file.  A symlink is followed to its target (the link stays a link).  A
+ * character device or a FIFO is written directly (renaming over it would
+ * replace the device node); a directory, a block device or a socket is
+ * refused.  New files get 0666 & ~umask, a replaced file keeps its mode.
+ * SIGINT, SIGTERM, SIGHUP and SIGPIPE remove the temporary files. */
+
+enum { MAX_OUT = 8, MAX_LINKS = 40 };
+static char *volatile pending_tmp[MAX_OUT]; /* read by the signal handler */
+static mode_t process_umask;
+static int signals_installed = 0;
+
+static void remove_pending(void)
+{
+  for (int i = 0; i < MAX_OUT; i++)
+    if (pending_tmp[i])
+      unlink(pending_tmp[i]);
+}
+
+static void on_signal(int sig)
+{
+  remove_pending(); /* unlink is async-signal-safe */
+  signal(sig, SIG_DFL);
+  raise(sig);
+}
+
+static void install_signals(void)
+{
+  if (signals_installed)
+    return;
+  signals_installed = 1;
+  process_umask = umask(0);
+  umask(process_umask);
+  static const int sigs[] = {SIGINT, SIGTERM, SIGHUP, SIGPIPE};
+  for (size_t i = 0; i < sizeof sigs / sizeof sigs[0]; i++) {
+    struct sigaction sa;
+    memset(&sa, 0, sizeof sa);
+    sa.sa_handler = on_signal;
+    sigemptyset(&sa.sa_mask);
+    for (size_t j = 0; j < sizeof sigs / sizeof sigs[0]; j++)
+      sigaddset(&sa.sa_mask, sigs[j]);
+    sigaction(sigs[i], &sa, NULL);
+  }
+}
+
+static void track_tmp(char *tmp, int on)
+{
+  sigset_t all, old;
+  sigfillset(&all);
+  sigprocmask(SIG_BLOCK, &all, &old);
+  for (int i = 0; i < MAX_OUT; i++)
+    if (on ? pending_tmp[i] == NULL : pending_tmp[i] == tmp) {
+      pending_tmp[i] = on ? tmp : NULL;
+      break;
+    }
+  sigprocmask(SIG_SETMASK, &old, NULL);
+}
+
+/* Follow symlinks from path to the file they name (which may not exist yet).
+ * Returns a malloc'ed path, or NULL with errno set. */
+static char *resolve_links(const char *path)
+{
+  char *p = strdup(path);
+  for (int hops = 0; p; hops++) {
+    struct stat st;
+    if (lstat(p, &st) != 0 || !S_ISLNK(st.st_mode))
+      return p; /* missing or not a link: this is the target */
+    if (hops == MAX_LINKS) {
+      free(p);
+      errno = ELOOP;
+      return NULL;
+    }
+    char link[4096];
+    ssize_t n = readlink(p, link, sizeof link - 1);
+    if (n < 0) {
+      free(p);
+      return NULL;
+    }
+    link[n] = '\0';
+    char *next;
+    const char *slash = strrchr(p, '/');
+    if (link[0] == '/' || !slash) {
+      next = strdup(link);
+    } else {
+      size_t dlen = (size_t)(slash - p) + 1;
+      next = malloc(dlen + (size_t)n + 1);
+      if (next) {
+        memcpy(next, p, dlen);
+        memcpy(next + dlen, link, (size_t)n + 1);
+      }
+    }
+    free(p);
+    p = next;
+  }
+  errno = ENOMEM;
+  return NULL;
+}
+
 void cli_out_open(cli_out *o, const char *path)
 {
   o->f = NULL;
@@ -230,17 +335,49 @@ void cli_out_open(cli_out *o, const char *path)
     o->f = stdout;
     return;
   }
-  size_t len = strlen(path) + 16;
-  o->path = strdup(path);
+  install_signals();
+  char *target = resolve_links(path);
+  if (!target)
+    cli_die(2, "-o %s: cannot resolve the path (%s)", path, strerror(errno));
+  struct stat st;
+  int exists = stat(target, &st) == 0;
+  if (exists && (S_ISCHR(st.st_mode) || S_ISFIFO(st.st_mode))) {
+    /* a device or a pipe: write it in place, never rename over it */
+    int fd = open(target, O_WRONLY | O_NOCTTY);
+    if (fd < 0) {
+      int e = errno;
+      free(target);
+      cli_die(2, "-o %s: cannot open the device or FIFO for writing (%s)", path, strerror(e));
+    }
+    o->f = fdopen(fd, "w");
+    o->path = target;
+    if (!o->f)
+      cli_die(1, "-o %s: %s", path, strerror(errno));
+    return;
+  }
+  if (exists && !S_ISREG(st.st_mode)) {
+    free(target);
+    cli_die(2, "-o %s: %s; allowed: a regular file, a new path, a character device or a FIFO",
+            path, S_ISDIR(st.st_mode) ? "is a directory" : "is a block device or socket");
+  }
+  size_t len = strlen(target) + 16;
+  o->path = target;
   o->tmp = malloc(len);
-  if (!o->path || !o->tmp)
+  if (!o->tmp)
     cli_die(1, "out of memory");
-  snprintf(o->tmp, len, "%s.tmpXXXXXX", path);
+  snprintf(o->tmp, len, "%s.tmpXXXXXX", target);
   int fd = mkstemp(o->tmp);
   if (fd < 0) {
+    int e = errno;
     free(o->tmp);
     o->tmp = NULL;
-    cli_die(2, "-o %s: cannot create the output file (%s)", path, strerror(errno));
+    cli_die(2, "-o %s: cannot create the output file (%s)", path, strerror(e));
+  }
+  track_tmp(o->tmp, 1);
+  mode_t mode = exists ? (st.st_mode & 07777) : (0666 & ~process_umask);
+  if (fchmod(fd, mode) != 0) {
+    close(fd);
+    cli_die(1, "-o %s: cannot set the file mode (%s)", path, strerror(errno));
   }
   o->f = fdopen(fd, "w");
   if (!o->f)
@@ -250,11 +387,13 @@ void cli_out_open(cli_out *o, const char *path)
 
 void cli_out_abort(cli_out *o)
 {
-  current_out = NULL;
+  if (current_out == o)
+    current_out = NULL;
+  if (o->f && o->f != stdout)
+    fclose(o->f);
   if (o->tmp) {
-    if (o->f)
-      fclose(o->f);
     remove(o->tmp);
+    track_tmp(o->tmp, 0);
   }
   free(o->tmp);
   free(o->path);
@@ -264,18 +403,30 @@ void cli_out_abort(cli_out *o)
 
 void cli_out_commit(cli_out *o)
 {
-  current_out = NULL;
-  if (!o->tmp) {
-    if (fflush(stdout) != 0)
+  if (current_out == o)
+    current_out = NULL;
+  if (o->f == stdout) {
+    if (fflush(stdout) != 0 || ferror(stdout))
       cli_die(1, "cannot write the output: %s", strerror(errno));
+    o->f = NULL;
     return;
   }
   int bad = ferror(o->f);
   bad |= fclose(o->f) != 0;
   o->f = NULL;
-  if (bad || rename(o->tmp, o->path) != 0) {
-    remove(o->tmp);
-    cli_die(1, "-o %s: cannot write the output file", o->path);
+  if (o->tmp) {
+    if (bad || rename(o->tmp, o->path) != 0)
+      bad = 1;
+    if (bad)
+      remove(o->tmp);
+    track_tmp(o->tmp, 0);
+  }
+  if (bad) {
+    char *p = o->path;
+    o->path = NULL;
+    free(o->tmp);
+    o->tmp = NULL;
+    cli_die(1, "-o %s: cannot write the output file", p);
   }
   free(o->tmp);
   free(o->path);

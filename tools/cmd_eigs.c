@@ -502,48 +502,44 @@ static int fig_row(FILE *f, const char *fig, const mfs_model_spec *s, int nodes)
 static int fig_file(const char *dir, const char *name, const mfs_kernel_type *k, int dim)
 {
   size_t len = strlen(dir) + strlen(name) + 2;
-  char *path = malloc(len), *tmp = malloc(len + 8);
-  if (!path || !tmp)
-    return 1;
+  char *path = malloc(len);
+  if (!path)
+    cli_die(1, "out of memory");
   snprintf(path, len, "%s/%s", dir, name);
-  snprintf(tmp, len + 8, "%s.tmp", path);
-  FILE *f = fopen(tmp, "w");
-  int bad = !f;
-  if (f) {
-    fputs("figure,kernel,shape,quadrature,mass,nodes,dilation,lambda_max_dx2,bound_dx2,"
-          "alpha_dx2,paper_alpha_dx2,paper_alpha2_dx2,bound_ratio,alpha_ratio,negative_phi_points\n",
-          f);
-    mfs_model_spec s;
-    mfs_model_spec_default(&s);
-    s.kernel = k;
-    s.quadrature = "gauss2";
-    if (dim == 1) {
-      static const int nn[2] = {41, 101};
-      for (int a = 0; a < 2 && !bad; a++)
-        for (int i = 0; i <= 12 && !bad; i++) {
-          s.nx = nn[a];
-          s.dilation = 1.0 + 0.25 * i;
-          bad = fig_row(f, "17", &s, nn[a]);
-        }
-    } else {
-      s.dim = 2;
-      s.nx = s.ny = 21;
-      for (int i = 0; i <= 14 && !bad; i++) {
-        s.dilation = 1.5 + 0.25 * i;
-        bad = fig_row(f, "18", &s, 21 * 21);
+  cli_out out;
+  cli_out_open(&out, path);
+  FILE *f = out.f;
+  fputs("figure,kernel,shape,quadrature,mass,nodes,dilation,lambda_max_dx2,bound_dx2,"
+        "alpha_dx2,paper_alpha_dx2,paper_alpha2_dx2,bound_ratio,alpha_ratio,negative_phi_points\n",
+        f);
+  mfs_model_spec s;
+  mfs_model_spec_default(&s);
+  s.kernel = k;
+  s.quadrature = "gauss2";
+  int bad = 0;
+  if (dim == 1) {
+    static const int nn[2] = {41, 101};
+    for (int a = 0; a < 2 && !bad; a++)
+      for (int i = 0; i <= 12 && !bad; i++) {
+        s.nx = nn[a];
+        s.dilation = 1.0 + 0.25 * i;
+        bad = fig_row(f, "17", &s, nn[a]);
       }
+  } else {
+    s.dim = 2;
+    s.nx = s.ny = 21;
+    for (int i = 0; i <= 14 && !bad; i++) {
+      s.dilation = 1.5 + 0.25 * i;
+      bad = fig_row(f, "18", &s, 21 * 21);
     }
-    bad |= ferror(f);
-    bad |= fclose(f) != 0;
   }
-  if (!bad && rename(tmp, path) != 0)
-    bad = 1;
   if (bad) {
-    remove(tmp);
-    fprintf(stderr, "mfstab %s: cannot write %s\n", cli_command, path);
+    cli_out_abort(&out);
+    fprintf(stderr, "mfstab %s: cannot compute %s\n", cli_command, path);
+  } else {
+    cli_out_commit(&out);
   }
   free(path);
-  free(tmp);
   return bad;
 }
 
