@@ -22,4 +22,14 @@
 #include "mfs_tsph.h"
 #include "mfs_voronoi.h"
 
+#ifdef __cplusplus
+extern "C" {
+#endif
+
+
+
+#ifdef __cplusplus
+}
+#endif
+
 #endif

@@ -42,6 +42,10 @@
 #include "mfs_dispersion.h"
 #include "mfs_explicit.h"
 
+#ifdef __cplusplus
+extern "C" {
+#endif
+
 typedef enum { MFS_BC_FREE, MFS_BC_FIXED, MFS_BC_VELOCITY } mfs_bc;
 
 
@@ -126,5 +130,9 @@ int mfs_solver_energy(mfs_solver *s, double *kinetic, double *potential);
 
 /* Index of the particle nearest to coordinate X. */
 size_t mfs_solver_nearest(const mfs_solver *s, double X);
+
+#ifdef __cplusplus
+}
+#endif
 
 #endif

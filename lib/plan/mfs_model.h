@@ -26,6 +26,10 @@
 #include "mfs_assemble.h"
 #include "mfs_csr.h"
 
+#ifdef __cplusplus
+extern "C" {
+#endif
+
 typedef enum {
   MFS_FIX_NONE = 0,
   MFS_FIX_ENDS,    /* 1D: the particles at x = 0 and x = lx */
@@ -106,5 +110,9 @@ int mfs_model_rigid_fields(const mfs_model *m, double *r);
 /* Write K to fK and M (the lumped mass as a diagonal matrix) to fM in
  * Matrix Market coordinate format; a NULL file is skipped.  MFS_OK, MFS_EIO. */
 int mfs_model_write_mtx(const mfs_model *m, FILE *fK, FILE *fM);
+
+#ifdef __cplusplus
+}
+#endif
 
 #endif

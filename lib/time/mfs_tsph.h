@@ -71,6 +71,10 @@
 #include "mfs_kernel.h"
 #include "mfs_solver.h"
 
+#ifdef __cplusplus
+extern "C" {
+#endif
+
 typedef enum { MFS_TSPH_TAYLOR, MFS_TSPH_EULER, MFS_TSPH_RK2, MFS_TSPH_RK4 } mfs_tsph_scheme;
 
 /* Name ("tsph", "euler", "rk2", "rk4"); parse: MFS_EINVAL if unknown. */
@@ -155,5 +159,9 @@ double mfs_tsph_velocity_at(const mfs_tsph *s, double X);
 /* Kinetic 1/2 sum rho Omega v^2 and elastic sum Omega sigma^2 / (2E) (J per
  * unit section). */
 void mfs_tsph_energy(const mfs_tsph *s, double *kinetic, double *potential);
+
+#ifdef __cplusplus
+}
+#endif
 
 #endif

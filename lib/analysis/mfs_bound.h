@@ -52,6 +52,10 @@
 #include "mfs_dispersion.h"
 #include "mfs_model.h"
 
+#ifdef __cplusplus
+extern "C" {
+#endif
+
 typedef struct {
   double lambda;        /* max_Q lambda^Q (eq. 124), 1/time^2 */
   size_t argmax;        /* a quadrature point where it is attained */
@@ -121,5 +125,9 @@ int mfs_bound_fourier(const mfs_model_spec *spec, int npts, int nangles, double 
 /* Critical time step of the undamped central difference method,
  * 2 / omega_max = 2 / sqrt(lambda_max) (eq. 120 with xi = 0, eq. 124). */
 double mfs_dt_crit(double lambda_max);
+
+#ifdef __cplusplus
+}
+#endif
 
 #endif

@@ -7,6 +7,9 @@
  * functions do not depend on the normalization; SPH does. */
 #ifndef MFS_KERNEL_H
 #define MFS_KERNEL_H
+#ifdef __cplusplus
+extern "C" {
+#endif
 
 typedef struct {
   const char *name;
@@ -62,5 +65,9 @@ static inline mfs_kernel_value mfs_kernel_radial(const mfs_kernel_type *k, int d
   v.dW_r = (z > 0.0) ? c * (dw / z) / (a * a) : v.d2W;
   return v;
 }
+
+#ifdef __cplusplus
+}
+#endif
 
 #endif

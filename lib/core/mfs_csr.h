@@ -6,6 +6,10 @@
 #include <stddef.h>
 #include <stdio.h>
 
+#ifdef __cplusplus
+extern "C" {
+#endif
+
 typedef struct {
   size_t nrow, ncol;
   size_t *ptr; /* nrow+1 */
@@ -28,5 +32,9 @@ double mfs_csr_asymmetry(const mfs_csr *A, double *amax);
 
 /* Write in Matrix Market coordinate real general format. Returns MFS_OK or MFS_EIO. */
 int mfs_csr_write_mtx(const mfs_csr *A, FILE *f);
+
+#ifdef __cplusplus
+}
+#endif
 
 #endif

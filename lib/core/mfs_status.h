@@ -2,6 +2,9 @@
  * function that can fail returns one of these, and mfs_strerror() names it. */
 #ifndef MFS_STATUS_H
 #define MFS_STATUS_H
+#ifdef __cplusplus
+extern "C" {
+#endif
 
 /* X(name, value, message): the one list every status comes from. */
 #define MFS_STATUS_LIST(X)                                                        \
@@ -25,5 +28,9 @@ typedef enum {
 
 /* A static, human-readable description of a status code. */
 const char *mfs_strerror(int status);
+
+#ifdef __cplusplus
+}
+#endif
 
 #endif

@@ -8,6 +8,10 @@
 
 #include "mfs_particles.h"
 
+#ifdef __cplusplus
+extern "C" {
+#endif
+
 /* Points bucketed into cells of side >= radius.  Borrows x. */
 typedef struct {
   int dim;
@@ -43,5 +47,9 @@ void mfs_nlist_free(mfs_nlist *nl);
 
 /* The transpose: for each of n points, the queries whose lists hold it. */
 mfs_nlist *mfs_nlist_transpose(const mfs_nlist *nl, size_t n, int *status);
+
+#ifdef __cplusplus
+}
+#endif
 
 #endif

@@ -81,6 +81,10 @@
 #include "mfs_kernel.h"
 #include "mfs_shape.h"
 
+#ifdef __cplusplus
+extern "C" {
+#endif
+
 typedef enum {
   MFS_CF_EULER_NODAL,
   MFS_CF_LAGR_NODAL,
@@ -144,5 +148,9 @@ int mfs_cf_lattice_sums(const mfs_cf_plan *p, double kappa, mfs_cf_sums *out);
  * phi[3 i + 0..2] = phi, phi', phi'' there.  Pointers are into the plan. */
 int mfs_cf_table(const mfs_cf_plan *p, int midpoints, size_t *n, const double **x,
                  const double **phi);
+
+#ifdef __cplusplus
+}
+#endif
 
 #endif

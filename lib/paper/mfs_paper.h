@@ -5,6 +5,10 @@
 
 #include <stddef.h>
 
+#ifdef __cplusplus
+extern "C" {
+#endif
+
 /* Table I: stiffness K_jk of the 2D anti-plane problem, cubic spline, MLS,
  * D = 2, gamma = 1, for (j, k) >= 0 (the entries hold for all sign
  * combinations).  Columns: nodal, gauss2 (2x2 cells), gauss1 (one-point
@@ -22,5 +26,9 @@ extern const size_t mfs_paper_table1_len;
 
 /* Half a unit in the last printed digit of v (4 significant digits). */
 double mfs_paper_table1_tol(double v);
+
+#ifdef __cplusplus
+}
+#endif
 
 #endif

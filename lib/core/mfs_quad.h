@@ -17,6 +17,10 @@
 
 #include "mfs_particles.h"
 
+#ifdef __cplusplus
+extern "C" {
+#endif
+
 typedef enum {
   MFS_QK_NODAL,
   MFS_QK_HALF,    /* particles + cell centres, half each */
@@ -52,5 +56,9 @@ typedef struct {
  * rule, see mfs_quad_rule.cells). */
 mfs_quad *mfs_quad_alloc(const mfs_quad_rule *rule, const mfs_particles *p, int *status);
 void mfs_quad_free(mfs_quad *q);
+
+#ifdef __cplusplus
+}
+#endif
 
 #endif

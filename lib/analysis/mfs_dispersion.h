@@ -30,6 +30,10 @@
 
 #include "mfs_assemble.h"
 
+#ifdef __cplusplus
+extern "C" {
+#endif
+
 /* Kernel frames: Lagrangian; Eulerian as linearized by the paper (eq. 71:
  * phi_I moves rigidly with particle I); Eulerian, consistent: the exact
  * linearization of shape functions re-evaluated in current coordinates,
@@ -85,5 +89,9 @@ int mfs_disp_symbols(const mfs_disp_plan *pl, double sbar, const double *k, doub
  * in direction theta: 1 along a lattice axis of the square lattice,
  * sqrt(2) at 45 degrees (paper section 4.4). */
 double mfs_disp_kappa_max(const mfs_disp_plan *pl, double theta);
+
+#ifdef __cplusplus
+}
+#endif
 
 #endif

@@ -7,6 +7,10 @@
 #include <math.h>
 #include <stddef.h>
 
+#ifdef __cplusplus
+extern "C" {
+#endif
+
 typedef enum { MFS_LATTICE_LINE, MFS_LATTICE_SQUARE, MFS_LATTICE_HEX } mfs_lattice_kind;
 
 /* How square cells are split: kept as quadrilaterals, cut by one diagonal
@@ -80,5 +84,9 @@ double mfs_cell_measure(const mfs_particles *p, size_t c);
 
 /* Domain volume: the sum of the cell measures. */
 double mfs_particles_domain_volume(const mfs_particles *p);
+
+#ifdef __cplusplus
+}
+#endif
 
 #endif

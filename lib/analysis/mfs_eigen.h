@@ -45,6 +45,10 @@
 
 #include "mfs_csr.h"
 
+#ifdef __cplusplus
+extern "C" {
+#endif
+
 /* The pencil (K, M).  Exactly one of M (consistent mass, CSR) and m
  * (lumped mass: the diagonal, all entries > 0) is given.  Borrowed. */
 typedef struct {
@@ -126,5 +130,9 @@ int mfs_eig_is_null(const mfs_pencil *P, const double *r, double lambda_max, dou
  * or a bad pencil; MFS_EDOMAIN if M is not positive definite; MFS_ELAPACK;
  * MFS_ENOMEM. */
 int mfs_eig_dense(const mfs_pencil *P, double *w);
+
+#ifdef __cplusplus
+}
+#endif
 
 #endif

@@ -26,6 +26,10 @@
 #include "mfs_quad.h"
 #include "mfs_shape.h"
 
+#ifdef __cplusplus
+extern "C" {
+#endif
+
 typedef struct {
   const mfs_kernel_type *kernel;
   const mfs_shape_type *shape;
@@ -93,5 +97,9 @@ typedef struct {
 /* *entries is allocated (free()); sorted by (k, j).  Scalar physics only. */
 int mfs_stencil(const mfs_stencil_spec *spec, mfs_stencil_entry **entries, size_t *n,
                 size_t *bad);
+
+#ifdef __cplusplus
+}
+#endif
 
 #endif

@@ -8,8 +8,16 @@
 
 #include "mfs_particles.h"
 
+#ifdef __cplusplus
+extern "C" {
+#endif
+
 /* area[i] for the n points x (n*2) of box.  Returns MFS_OK, MFS_EINVAL
  * (not 2D, a point outside a finite box) or MFS_ENOMEM. */
 int mfs_voronoi_areas(size_t n, const double *x, const mfs_box *box, double *area);
+
+#ifdef __cplusplus
+}
+#endif
 
 #endif

@@ -45,6 +45,10 @@
 #include "mfs_model.h"
 #include "mfs_solver.h"
 
+#ifdef __cplusplus
+extern "C" {
+#endif
+
 typedef struct mfs_solver2d_work mfs_solver2d_work;
 
 /* Fields are read-only for the caller except through the functions below. */
@@ -105,5 +109,9 @@ size_t mfs_solver2d_nearest(const mfs_solver2d *s, double x, double y);
  * index into u, v, a), or -1 if the particle is fixed or the arguments are
  * out of range.  O(log n). */
 long mfs_solver2d_dof(const mfs_solver2d *s, size_t particle, int comp);
+
+#ifdef __cplusplus
+}
+#endif
 
 #endif

@@ -10,6 +10,10 @@
 
 #include <stddef.h>
 
+#ifdef __cplusplus
+extern "C" {
+#endif
+
 typedef enum {
   MFS_SCHEME_LEAPFROG,
   MFS_SCHEME_EULER,
@@ -34,5 +38,9 @@ typedef struct {
 int mfs_explicit_step(mfs_scheme scheme, size_t n, double *u, double *v, double *a, double t,
                       double dt, const mfs_explicit_work *w, mfs_accel_fn accel,
                       mfs_impose_fn impose, void *ctx);
+
+#ifdef __cplusplus
+}
+#endif
 
 #endif

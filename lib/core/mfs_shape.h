@@ -24,6 +24,10 @@
 
 #include "mfs_kernel.h"
 
+#ifdef __cplusplus
+extern "C" {
+#endif
+
 typedef struct {
   const mfs_kernel_type *kernel;
   int dim;          /* 1..3 */
@@ -68,5 +72,9 @@ size_t mfs_shape_work_len(int dim, int nn);
  * MFS_ENOTSUP for kb and rl, MFS_ESINGULAR as eval. */
 int mfs_shape_dpos_1d(const mfs_shape_type *t, const mfs_shape_ctx *c, int nn, const double *d,
                       const double *v, int K, double *dphi, double *dgrad);
+
+#ifdef __cplusplus
+}
+#endif
 
 #endif
