@@ -33,25 +33,37 @@ static void model_free(model *m)
   m->p = NULL;
 }
 
-static int model_build(model *m, const mfs_lattice_spec *ls, const char *rule_name,
-                       const mfs_plan_spec *ps, const char *ctx)
+/* The discretization of a plan: kernel, shape, dilation. */
+static mfs_disc plan_disc(const mfs_kernel_type *k, const mfs_shape_type *sh, double D)
 {
-  int st;
+  mfs_disc d = mfs_disc_default();
+  d.kernel = k;
+  d.shape = sh;
+  d.dilation = D;
+  return d;
+}
+
+static int model_build(model *m, const mfs_lattice_spec *ls, const char *rule_name,
+                       const mfs_disc *ps, const char *ctx)
+{
+  mfs_status st;
   size_t bad = 0;
-  mfs_quad_rule rule;
   memset(m, 0, sizeof *m);
-  st = mfs_quad_rule_parse(rule_name, &rule);
-  CHECK(st == MFS_OK, "%s: rule %s", ctx, rule_name);
-  if (st != MFS_OK)
-    return st;
+  const mfs_quad_type *rule = mfs_quad_find(rule_name);
+  CHECK(rule != NULL, "%s: rule %s", ctx, rule_name);
+  if (!rule)
+    return MFS_EINVAL;
   m->p = mfs_lattice_alloc(ls, &st);
-  m->q = m->p ? mfs_quad_alloc(&rule, m->p, &st) : NULL;
-  m->pl = m->q ? mfs_plan_alloc(ps, m->p, m->q, &st, &bad) : NULL;
+  m->q = m->p ? mfs_quad_alloc(rule, m->p, &st) : NULL;
+  m->pl = m->q ? mfs_plan_alloc(ps, m->p, m->q, &st) : NULL;
+  if (m->pl)
+    st = mfs_plan_tabulate(m->pl, 1, &bad);
   CHECK(m->pl && st == MFS_OK, "%s: building the model: status %d (%s), point %zu", ctx, st,
         mfs_strerror(st), bad);
   if (m->pl)
-    CHECK(m->pl->rcond > 0.0 && m->pl->rcond <= 1.0, "%s: plan rcond %g", ctx, m->pl->rcond);
-  if (!m->pl)
+    CHECK(mfs_plan_rcond(m->pl) > 0.0 && mfs_plan_rcond(m->pl) <= 1.0, "%s: plan rcond %g", ctx,
+          mfs_plan_rcond(m->pl));
+  if (st != MFS_OK)
     model_free(m);
   return st;
 }
@@ -84,7 +96,10 @@ static void check_plan_table(const model *m, const char *ctx)
 {
   const mfs_plan *pl = m->pl;
   const mfs_particles *p = m->p;
-  int dim = p->dim, nc = pl->ncomp;
+  int dim = p->dim, nc = mfs_plan_ncomp(pl);
+  const mfs_disc *pd = mfs_plan_disc(pl);
+  const mfs_shape_ctx sc = {.kernel = pd->kernel, .dim = dim, .a = mfs_plan_support(pl),
+                             .rcond_min = 1e-12};
   int *idx = malloc(p->n * sizeof *idx);
   double *d = malloc(p->n * dim * sizeof *d), *v = malloc(p->n * sizeof *v);
   double *out = malloc(p->n * nc * sizeof *out);
@@ -98,7 +113,7 @@ static void check_plan_table(const model *m, const char *ctx)
       mfs_box_delta(&p->box, xq, p->x + I * dim, t);
       for (int k = 0; k < dim; k++)
         r2 += t[k] * t[k];
-      if (r2 < pl->ctx.a * pl->ctx.a) {
+      if (r2 < sc.a * sc.a) {
         if ((int)I == m->q->node[Q])
           self = nn;
         memcpy(d + nn * dim, t, dim * sizeof *t);
@@ -107,17 +122,18 @@ static void check_plan_table(const model *m, const char *ctx)
       }
     }
     double rc;
-    int st = pl->shape->eval(&pl->ctx, nn, d, v, self, pl->order, out, work, &rc);
-    size_t e0 = pl->nl->ptr[Q];
-    if (st != MFS_OK || (size_t)nn != pl->nl->ptr[Q + 1] - e0) {
+    mfs_status st = pd->shape->eval(&sc, nn, d, v, self, mfs_plan_order(pl), out, work, &rc);
+    mfs_point pt;
+    mfs_plan_point(pl, Q, &pt);
+    if (st != MFS_OK || (size_t)nn != pt.nn) {
       bad++;
       continue;
     }
     for (int J = 0; J < nn; J++) {
-      bad += pl->nl->idx[e0 + J] != idx[J];
+      bad += pt.idx[J] != idx[J];
       for (int c = 0; c < nc; c++) {
-        double t = out[J * nc + c], u = pl->tab[(e0 + J) * nc + c];
-        bad += fabs(t - u) > 1e-14 * (fabs(t) + 1.0 / pow(pl->ctx.a, c == 0 ? 0 : 1 + (c > dim)));
+        double t = out[J * nc + c], u = pt.phi[J * nc + c];
+        bad += fabs(t - u) > 1e-14 * (fabs(t) + 1.0 / pow(sc.a, c == 0 ? 0 : 1 + (c > dim)));
       }
     }
   }
@@ -137,20 +153,20 @@ static void check_scalar(const mfs_lattice_spec *ls, const char *rule, const mfs
   snprintf(ctx, sizeof ctx, "%dD %s %s %s %s D=%g%s", ls->dim,
            ls->lattice == MFS_LATTICE_HEX ? "hex" : ls->dim == 1 ? "line" : "square", rule,
            sh->name, k->name, D, ls->periodic ? " periodic" : "");
-  mfs_plan_spec ps = {k, sh, D, 1, 1e-12};
+  mfs_disc ps = plan_disc(k, sh, D);
   model m;
   if (model_build(&m, ls, rule, &ps, ctx) != MFS_OK)
     return;
   const mfs_particles *p = m.p;
   size_t n = p->n;
   int dim = p->dim;
-  mfs_material mat = {MFS_PHYS_SCALAR, 2.3719, 0.0, 7.813};
+  mfs_material mat = {.physics = MFS_PHYS_SCALAR, .modulus = 2.3719, .density = 7.813};
   mfs_csr *K = NULL, *M = NULL;
   double *u = malloc(n * sizeof *u), *y = malloc(n * sizeof *y), *w = malloc(n * sizeof *w);
   double *ml = malloc(n * sizeof *ml);
-  int st = mfs_assemble_stiffness(m.pl, &mat, &K);
+  mfs_status st = mfs_assemble_stiffness(m.pl, &mat, &K);
   CHECK(st == MFS_OK && K && K->nrow == n, "%s: stiffness status %d", ctx, st);
-  int st2 = mfs_assemble_mass_consistent(m.pl, &mat, &M);
+  mfs_status st2 = mfs_assemble_mass_consistent(m.pl, &mat, &M);
   CHECK(st2 == MFS_OK && M && M->nrow == n, "%s: consistent mass status %d", ctx, st2);
   int st3 = mfs_assemble_mass_lumped(m.pl, &mat, ml);
   CHECK(st3 == MFS_OK, "%s: lumped mass status %d", ctx, st3);
@@ -237,13 +253,13 @@ static void check_sph_periodic(int dim, mfs_lattice_kind lat, const char *rule)
   snprintf(ctx, sizeof ctx, "sph periodic %dD %s %s", dim,
            lat == MFS_LATTICE_HEX ? "hex" : "square/line", rule);
   mfs_lattice_spec ls = {dim, lat, 12, 10, DX, 1.0, 1, MFS_CELLS_QUAD, 0.0, 0};
-  mfs_plan_spec ps = {&mfs_kernel_cubic, &mfs_shape_sph, 2.385, 1, 1e-12};
+  mfs_disc ps = plan_disc(&mfs_kernel_cubic, &mfs_shape_sph, 2.385);
   model m;
   if (model_build(&m, &ls, rule, &ps, ctx) != MFS_OK)
     return;
-  mfs_material mat = {MFS_PHYS_SCALAR, 1.913, 0.0, 1.0};
+  mfs_material mat = {.physics = MFS_PHYS_SCALAR, .modulus = 1.913, .density = 1.0};
   mfs_csr *K = NULL;
-  int st = mfs_assemble_stiffness(m.pl, &mat, &K);
+  mfs_status st = mfs_assemble_stiffness(m.pl, &mat, &K);
   CHECK(st == MFS_OK, "%s: status %d", ctx, st);
   if (st == MFS_OK) {
     size_t n = m.p->n;
@@ -268,20 +284,25 @@ static void check_plane_strain(mfs_lattice_kind lat, const char *rule, const mfs
   snprintf(ctx, sizeof ctx, "plane strain %s %s %s", lat == MFS_LATTICE_HEX ? "hex" : "square",
            rule, sh->name);
   mfs_lattice_spec ls = {2, lat, 11, 10, DX, 1.0, 0, MFS_CELLS_QUAD, 0.3, 2718};
-  mfs_plan_spec ps = {&mfs_kernel_quartic, sh, 2.385, 1, 1e-12};
+  mfs_disc ps = plan_disc(&mfs_kernel_quartic, sh, 2.385);
   model m;
   if (model_build(&m, &ls, rule, &ps, ctx) != MFS_OK)
     return;
   const mfs_particles *p = m.p;
   size_t n = p->n, N = 2 * n;
-  mfs_material mat = {MFS_PHYS_PLANE_STRAIN, 1.3791, 2.0719, 3.1};
-  CHECK(mfs_physics_ndof(mat.kind) == 2, "plane strain: 2 dofs per particle");
+  /* mu = 1.3791, lambda = 2.0719: nu = lambda / (2 (lambda + mu)) */
+  mfs_material mat = {.physics = MFS_PHYS_PLANE_STRAIN,
+                      .modulus = 1.3791,
+                      .poisson = 2.0719 / (2.0 * (2.0719 + 1.3791)),
+                      .density = 3.1};
+  CHECK(mfs_physics_ndof(mat.physics) == 2, "plane strain: 2 dofs per particle");
+  CHECK_NEAR(mfs_material_lambda(&mat), 2.0719, 1e-14, "lambda from nu");
   mfs_csr *K = NULL, *M = NULL;
   double *u = malloc(N * sizeof *u), *y = malloc(N * sizeof *y), *w = malloc(N * sizeof *w);
   double *ml = malloc(N * sizeof *ml);
-  int st = mfs_assemble_stiffness(m.pl, &mat, &K);
+  mfs_status st = mfs_assemble_stiffness(m.pl, &mat, &K);
   CHECK(st == MFS_OK && K && K->nrow == N && K->ncol == N, "%s: status %d", ctx, st);
-  int st2 = mfs_assemble_mass_consistent(m.pl, &mat, &M);
+  mfs_status st2 = mfs_assemble_mass_consistent(m.pl, &mat, &M);
   int st3 = mfs_assemble_mass_lumped(m.pl, &mat, ml);
   CHECK(st2 == MFS_OK && st3 == MFS_OK && M->nrow == N, "%s: mass status %d %d", ctx, st2, st3);
   if (st != MFS_OK || st2 != MFS_OK || st3 != MFS_OK)
@@ -304,7 +325,7 @@ static void check_plane_strain(mfs_lattice_kind lat, const char *rule, const mfs
   }
   /* uniform strains, exact energies: u = (x, 0): lambda + 2 mu;
    * u = (y, x) (gamma_xy = 2): 4 mu; u = (x, y): 2 (lambda + 2 mu) + 2 lambda */
-  double lam = mat.lambda, mu = mat.modulus;
+  double lam = mfs_material_lambda(&mat), mu = mat.modulus;
   double want[3] = {(lam + 2 * mu) * V, 4 * mu * V, (2 * (lam + 2 * mu) + 2 * lam) * V};
   for (int s = 0; s < 3; s++) {
     for (size_t i = 0; i < n; i++) {
@@ -353,35 +374,37 @@ static void check_stencil(int dim, mfs_lattice_kind lat, const char *rule,
            lat == MFS_LATTICE_HEX ? "hex" : dim == 1 ? "line" : "square", rule, k->name, sh->name,
            D, consistent ? "consistent" : "lumped");
   double gamma = 1.0;
-  mfs_stencil_spec s = {dim,
-                        lat,
-                        DX,
-                        gamma,
-                        rule,
-                        {k, sh, D, 1, 1e-12},
-                        {MFS_PHYS_SCALAR, 1.7, 0.0, 2.9},
-                        consistent};
+  mfs_disc s = plan_disc(k, sh, D);
+  s.dim = dim;
+  s.source = (mfs_source){.lattice = lat, .spacing = DX, .gamma = gamma};
+  s.quadrature = mfs_quad_find(rule);
+  s.material = (mfs_material){.physics = MFS_PHYS_SCALAR, .modulus = 1.7, .density = 2.9};
+  s.consistent_mass = consistent;
   mfs_stencil_entry *e = NULL;
   size_t ne = 0, bad = 0;
-  int st = mfs_stencil(&s, &e, &ne, &bad);
+  mfs_status st = mfs_stencil(&s, &e, &ne, &bad);
   CHECK(st == MFS_OK && ne > 0, "%s: status %d", ctx, st);
   if (st != MFS_OK)
     return;
   int nx = dim == 1 ? 61 : 31, ny = dim == 1 ? 1 : 31;
-  mfs_quad_rule r;
-  mfs_quad_rule_parse(rule, &r);
-  mfs_lattice_spec ls = {dim, lat, nx, ny, DX, gamma, 0, r.cells, 0.0, 0};
+  mfs_lattice_spec ls = {.dim = dim,
+                         .lattice = lat,
+                         .nx = nx,
+                         .ny = ny,
+                         .dx = DX,
+                         .gamma = gamma,
+                         .cells = s.quadrature->cells};
   model m;
-  if (model_build(&m, &ls, rule, &s.plan, ctx) != MFS_OK) {
+  if (model_build(&m, &ls, rule, &s, ctx) != MFS_OK) {
     free(e);
     return;
   }
   size_t Ic = (size_t)(ny / 2) * nx + nx / 2, n = m.p->n;
   mfs_csr *K = NULL, *M = NULL;
   double *ml = malloc(n * sizeof *ml);
-  st = mfs_assemble_stiffness(m.pl, &s.mat, &K);
-  int st2 = consistent ? mfs_assemble_mass_consistent(m.pl, &s.mat, &M)
-                       : mfs_assemble_mass_lumped(m.pl, &s.mat, ml);
+  st = mfs_assemble_stiffness(m.pl, &s.material, &K);
+  mfs_status st2 = consistent ? mfs_assemble_mass_consistent(m.pl, &s.material, &M)
+                              : mfs_assemble_mass_lumped(m.pl, &s.material, ml);
   CHECK(st == MFS_OK && st2 == MFS_OK, "%s: finite model status %d %d", ctx, st, st2);
   if (st == MFS_OK && st2 == MFS_OK) {
     double kmax = 0.0, mmax = 0.0;

@@ -19,17 +19,27 @@
 
 #include "check.h"
 #include "mfs_closed.h"
+#include "mfs_disc.h"
 #include "mfs_kernel.h"
 #include "mfs_shape.h"
 #include "mfs_status.h"
 
 static const mfs_kernel_type *const kernels[] = {&mfs_kernel_cubic, &mfs_kernel_quartic};
 
+static mfs_disc disc1(const mfs_kernel_type *k, const mfs_shape_type *s, double D)
+{
+  mfs_disc d = mfs_disc_default();
+  d.kernel = k;
+  d.shape = s;
+  d.dilation = D;
+  return d;
+}
+
 static mfs_cf_plan *make(const mfs_kernel_type *k, const mfs_shape_type *s, double D, double sb,
                          double F, double beta)
 {
-  mfs_cf_spec sp = {k, s, D, sb, F, beta};
-  int st = -1;
+  mfs_cf_spec sp = {.disc = disc1(k, s, D), .sbar = sb, .stretch = F, .beta = beta};
+  mfs_status st = -1;
   mfs_cf_plan *p = mfs_cf_plan_alloc(&sp, &st);
   CHECK(p && st == MFS_OK, "plan %s %s D=%g sbar=%g F=%g beta=%g: status %d", k->name, s->name,
         D, sb, F, beta, st);
@@ -39,7 +49,7 @@ static mfs_cf_plan *make(const mfs_kernel_type *k, const mfs_shape_type *s, doub
 static double om2(const mfs_cf_plan *p, mfs_cf_scheme s, double kappa)
 {
   double w = NAN;
-  int st = mfs_cf_omega2(p, s, 1, &kappa, &w);
+  mfs_status st = mfs_cf_omega2(p, s, 1, &kappa, &w);
   CHECK(st == MFS_OK, "omega2 %s at kappa %g: status %d", mfs_cf_scheme_name(s), kappa, st);
   return w;
 }
@@ -108,17 +118,17 @@ static double prof_df(const profile *p, double x)
 
 static void test_api(void)
 {
-  int st = -1;
-  mfs_cf_spec good = {&mfs_kernel_quartic, &mfs_shape_mls, 1.5, 0.0, 0.0, 0.0};
+  mfs_status st = -1;
+  mfs_cf_spec good = {.disc = disc1(&mfs_kernel_quartic, &mfs_shape_mls, 1.5)};
   mfs_cf_spec s;
   CHECK(mfs_cf_plan_alloc(NULL, &st) == NULL && st == MFS_EINVAL, "NULL spec: status %d", st);
-  s = good, s.kernel = NULL;
+  s = good, s.disc.kernel = NULL;
   CHECK(mfs_cf_plan_alloc(&s, &st) == NULL && st == MFS_EINVAL, "NULL kernel: status %d", st);
-  s = good, s.shape = NULL;
+  s = good, s.disc.shape = NULL;
   CHECK(mfs_cf_plan_alloc(&s, &st) == NULL && st == MFS_EINVAL, "NULL shape: status %d", st);
-  s = good, s.dilation = -1.5;
+  s = good, s.disc.dilation = -1.5;
   CHECK(mfs_cf_plan_alloc(&s, &st) == NULL && st == MFS_EINVAL, "D < 0: status %d", st);
-  s = good, s.dilation = 0.0;
+  s = good, s.disc.dilation = 0.0;
   CHECK(mfs_cf_plan_alloc(&s, &st) == NULL && st == MFS_EINVAL, "D = 0: status %d", st);
   s = good, s.sbar = NAN;
   CHECK(mfs_cf_plan_alloc(&s, &st) == NULL && st == MFS_EINVAL, "sbar NaN: status %d", st);
@@ -126,11 +136,11 @@ static void test_api(void)
   CHECK(mfs_cf_plan_alloc(&s, &st) == NULL && st == MFS_EINVAL, "F < 0: status %d", st);
   s = good, s.beta = -0.013;
   CHECK(mfs_cf_plan_alloc(&s, &st) == NULL && st == MFS_EINVAL, "beta < 0: status %d", st);
-  s = good, s.shape = &mfs_shape_shepard;
+  s = good, s.disc.shape = &mfs_shape_shepard;
   CHECK(mfs_cf_plan_alloc(&s, &st) == NULL && st == MFS_ENOTSUP, "shepard: status %d", st);
-  s = good, s.dilation = 1.0; /* a node sees only itself: moment matrix singular */
+  s = good, s.disc.dilation = 1.0; /* a node sees only itself: moment matrix singular */
   CHECK(mfs_cf_plan_alloc(&s, &st) == NULL && st == MFS_ESINGULAR, "mls D = 1: status %d", st);
-  s = good, s.dilation = 1.0, s.shape = &mfs_shape_sph; /* sph has no moment matrix */
+  s = good, s.disc.dilation = 1.0, s.disc.shape = &mfs_shape_sph; /* sph has no moment matrix */
   mfs_cf_plan *q = mfs_cf_plan_alloc(&s, &st);
   CHECK(q && st == MFS_OK, "sph D = 1: status %d", st);
   mfs_cf_plan_free(q);

@@ -10,12 +10,32 @@
 #include "check.h"
 #include "mfstab.h"
 
+/* A discretization on the infinite lattice. */
+static mfs_disc disc(int dim, mfs_lattice_kind lat, const char *quad, const mfs_kernel_type *k,
+                     const mfs_shape_type *s, double D, mfs_frame fr, mfs_physics_kind ph,
+                     double nu, int consistent)
+{
+  mfs_disc d = mfs_disc_default();
+  d.dim = dim;
+  d.source = (mfs_source){.lattice = lat, .spacing = 1.0, .gamma = 1.0};
+  d.quadrature = mfs_quad_find(quad);
+  d.kernel = k;
+  d.shape = s;
+  d.dilation = D;
+  d.frame = fr;
+  d.material.physics = ph;
+  d.material.poisson = nu;
+  d.consistent_mass = consistent;
+  return d;
+}
+
 static mfs_disp_plan *plan1d(const char *quad, const mfs_kernel_type *k, const mfs_shape_type *s,
                              double D, mfs_frame fr, int consistent)
 {
-  mfs_disp_spec sp = {1, MFS_LATTICE_LINE, 1.0, quad, k, s, D, fr, MFS_PHYS_SCALAR,
-                      0.0, 1.0, consistent, 0.0};
-  int st;
+  mfs_disp_spec sp = {
+    .disc = disc(1, MFS_LATTICE_LINE, quad, k, s, D, fr, MFS_PHYS_SCALAR, 0.0, consistent),
+    .stretch = 1.0};
+  mfs_status st;
   mfs_disp_plan *p = mfs_disp_plan_alloc(&sp, &st);
   CHECK(p != NULL, "plan %s %s D=%g: status %d", quad, k->name, D, st);
   return p;
@@ -23,9 +43,10 @@ static mfs_disp_plan *plan1d(const char *quad, const mfs_kernel_type *k, const m
 
 static mfs_disp_plan *plan2d(mfs_lattice_kind lat, const char *quad, mfs_physics_kind ph)
 {
-  mfs_disp_spec sp = {2, lat, 1.0, quad, &mfs_kernel_cubic, &mfs_shape_mls, 2.0,
-                      MFS_FRAME_LAGRANGIAN, ph, 0.3, 1.0, 0, 0.0};
-  int st;
+  mfs_disp_spec sp = {.disc = disc(2, lat, quad, &mfs_kernel_cubic, &mfs_shape_mls, 2.0,
+                                    MFS_FRAME_LAGRANGIAN, ph, 0.3, 0),
+                      .stretch = 1.0};
+  mfs_status st;
   mfs_disp_plan *p = mfs_disp_plan_alloc(&sp, &st);
   CHECK(p != NULL, "plan 2D %s: status %d", quad, st);
   return p;
@@ -34,7 +55,7 @@ static mfs_disp_plan *plan2d(mfs_lattice_kind lat, const char *quad, mfs_physics
 static double w2(const mfs_disp_plan *p, double sbar, double kap, double th, int branch)
 {
   double complex w[4];
-  int st = mfs_disp_omega2(p, sbar, kap, th, w);
+  mfs_status st = mfs_disp_omega2(p, sbar, kap, th, w);
   CHECK(st == MFS_OK, "omega2 status %d", st);
   return creal(w[branch]);
 }
@@ -305,13 +326,18 @@ static void paths_agree(void)
           for (int f = 0; f < (sc[c].stretch ? 3 : 1); f++)
             for (int b = 0; b < (sc[c].ls ? 3 : 1); b++) {
               double beta = sc[c].ls ? 0.0137 * b * b * 4.0 : 0.0;
-              mfs_disp_spec sp = {1, MFS_LATTICE_LINE, 1.0, sc[c].quad, ks[k], ss[s], Ds[d], sc[c].fr,
-                                  MFS_PHYS_SCALAR, 0.0, Fs[f], sc[c].consistent, beta};
-              int st;
+              mfs_disp_spec sp = {.disc = disc(1, MFS_LATTICE_LINE, sc[c].quad, ks[k], ss[s], Ds[d],
+                                               sc[c].fr, MFS_PHYS_SCALAR, 0.0, sc[c].consistent),
+                                  .stretch = Fs[f],
+                                  .ls_beta = beta};
+              mfs_status st;
               mfs_disp_plan *pa = mfs_disp_plan_alloc(&sp, &st);
               CHECK(pa != NULL, "path a plan: %d", st);
               for (int si = 0; si < (sc[c].ls ? 1 : 5); si++) {
-                mfs_cf_spec cs = {ks[k], ss[s], Ds[d], sbs[si] * (sc[c].ls ? 0 : 1), Fs[f], beta};
+                mfs_cf_spec cs = {.disc = sp.disc,
+                                  .sbar = sbs[si] * (sc[c].ls ? 0 : 1),
+                                  .stretch = Fs[f],
+                                  .beta = beta};
                 mfs_cf_plan *pb = mfs_cf_plan_alloc(&cs, &st);
                 CHECK(pb != NULL, "path b plan: %d", st);
                 if (!pa || !pb) {
@@ -443,17 +469,18 @@ static void consistent_frame(void)
 
 static void errors(void)
 {
-  int st;
-  mfs_disp_spec s = {2, MFS_LATTICE_SQUARE, 1.0, "nodal", &mfs_kernel_cubic, &mfs_shape_mls, 0.9,
-                     MFS_FRAME_LAGRANGIAN, MFS_PHYS_SCALAR, 0.3, 1.0, 0, 0.0};
+  mfs_status st;
+  mfs_disp_spec s = {.disc = disc(2, MFS_LATTICE_SQUARE, "nodal", &mfs_kernel_cubic, &mfs_shape_mls,
+                                   0.9, MFS_FRAME_LAGRANGIAN, MFS_PHYS_SCALAR, 0.3, 0),
+                     .stretch = 1.0};
   CHECK(mfs_disp_plan_alloc(&s, &st) == NULL && st == MFS_ESINGULAR, "D = 0.9: status %d", st);
-  s.dilation = 2.0;
-  s.quadrature = "stress-hex";
+  s.disc.dilation = 2.0;
+  s.disc.quadrature = &mfs_quad_stress_hex;
   CHECK(mfs_disp_plan_alloc(&s, &st) == NULL && st == MFS_EINVAL, "stress-hex on square: %d", st);
-  s.dim = 1;
-  s.lattice = MFS_LATTICE_LINE;
-  s.quadrature = "nodal";
-  s.physics = MFS_PHYS_PLANE_STRAIN;
+  s.disc.dim = 1;
+  s.disc.source.lattice = MFS_LATTICE_LINE;
+  s.disc.quadrature = &mfs_quad_nodal;
+  s.disc.material.physics = MFS_PHYS_PLANE_STRAIN;
   CHECK(mfs_disp_plan_alloc(&s, &st) == NULL && st == MFS_ENOTSUP, "plane strain in 1D: %d", st);
 }
 

@@ -15,27 +15,27 @@
 
 static mfs_model_spec spec1(int n, double D, const char *quad)
 {
-  mfs_model_spec s;
-  mfs_model_spec_default(&s);
-  s.nx = n;
-  s.dilation = D;
-  s.quadrature = quad;
+  mfs_model_spec s = mfs_model_spec_default();
+  s.disc.source.nx = n;
+  s.disc.dilation = D;
+  s.disc.quadrature = mfs_quad_find(quad);
   return s;
 }
 
 static mfs_model_spec spec2(int nx, int ny, double D, const char *quad)
 {
   mfs_model_spec s = spec1(nx, D, quad);
-  s.dim = 2;
-  s.ny = ny;
-  s.lx = 1.137;
-  s.ly = 0.8725;
+  s.disc.dim = 2;
+  s.disc.source.lattice = MFS_LATTICE_SQUARE;
+  s.disc.source.ny = ny;
+  s.disc.source.lx = 1.137;
+  s.disc.source.ly = 0.8725;
   return s;
 }
 
 static mfs_model *build(const mfs_model_spec *s, const char *what)
 {
-  int st;
+  mfs_status st;
   size_t bad = 0;
   mfs_model *m = mfs_model_alloc(s, &st, &bad);
   CHECK(m != NULL, "%s: model: %s (point %zu)", what, mfs_strerror(st), bad);
@@ -58,7 +58,7 @@ static void check_max(const mfs_model_spec *s, const char *what)
   mfs_pencil P = {m->K, m->M, m->m};
   double lam = 0.0, *w = malloc(m->n * sizeof *w);
   mfs_eig_info info;
-  int st = mfs_eig_max(&P, NULL, &lam, NULL, &info);
+  mfs_status st = mfs_eig_max(&P, NULL, &lam, NULL, &info);
   CHECK(st == MFS_OK, "%s: mfs_eig_max: %s (info %d)", what, mfs_strerror(st), info.info);
   st = mfs_eig_dense(&P, w);
   CHECK(st == MFS_OK, "%s: mfs_eig_dense: %s", what, mfs_strerror(st));
@@ -78,7 +78,7 @@ static void check_max(const mfs_model_spec *s, const char *what)
         b.negative_phi, bs.points, b.points);
   CHECK(bs.evaluated <= b.evaluated, "%s: streaming evaluated %zu > %zu", what, bs.evaluated,
         b.evaluated);
-  if (!s->consistent_mass && b.negative_phi == 0)
+  if (!s->disc.consistent_mass && b.negative_phi == 0)
     CHECK(b.lambda >= ref * (1.0 - 1e-12), "%s: bound %.10g below lambda_max %.10g", what,
           b.lambda, ref);
   free(w);
@@ -89,64 +89,64 @@ static void test_arpack_vs_dense(void)
 {
   mfs_model_spec s = spec1(41, 2.0, "gauss2");
   check_max(&s, "1D free gauss2 cubic mls lumped");
-  s.consistent_mass = 1;
-  s.dilation = 2.5;
+  s.disc.consistent_mass = 1;
+  s.disc.dilation = 2.5;
   check_max(&s, "1D free gauss2 consistent D2.5");
   s = spec1(100, 1.7, "gauss3");
-  s.kernel = &mfs_kernel_quartic;
+  s.disc.kernel = &mfs_kernel_quartic;
   s.fixed = MFS_FIX_ENDS;
-  s.modulus = 2.385;
-  s.density = 0.731;
-  s.lx = 3.21;
+  s.disc.material.modulus = 2.385;
+  s.disc.material.density = 0.731;
+  s.disc.source.lx = 3.21;
   check_max(&s, "1D fixed quartic gauss3");
   s = spec1(60, 2.3, "nodal");
-  s.periodic = 1;
+  s.disc.source.periodic = 1;
   check_max(&s, "1D periodic nodal");
   s = spec1(50, 1.6, "stress");
-  s.shape = &mfs_shape_shepard;
-  s.consistent_mass = 1;
+  s.disc.shape = &mfs_shape_shepard;
+  s.disc.consistent_mass = 1;
   check_max(&s, "1D free stress shepard consistent");
   s = spec1(80, 2.0, "nodal");
-  s.shape = &mfs_shape_sph;
-  s.periodic = 1;
+  s.disc.shape = &mfs_shape_sph;
+  s.disc.source.periodic = 1;
   check_max(&s, "1D periodic sph nodal");
 
   s = spec2(14, 11, 2.0, "gauss2");
   check_max(&s, "2D free gauss2 lumped");
   s = spec2(12, 12, 1.8, "gauss2");
   s.fixed = MFS_FIX_BOUNDARY;
-  s.consistent_mass = 1;
+  s.disc.consistent_mass = 1;
   check_max(&s, "2D fixed consistent");
   s = spec2(12, 10, 2.1, "stress-quad");
-  s.periodic = 1;
+  s.disc.source.periodic = 1;
   check_max(&s, "2D periodic stress-quad");
   s = spec2(11, 9, 2.2, "stress-tri");
-  s.kernel = &mfs_kernel_quartic;
+  s.disc.kernel = &mfs_kernel_quartic;
   s.fixed = MFS_FIX_BOUNDARY;
   check_max(&s, "2D fixed stress-tri quartic");
   s = spec2(9, 8, 2.0, "gauss2");
-  s.physics = MFS_PHYS_PLANE_STRAIN;
-  s.poisson = 0.3;
+  s.disc.material.physics = MFS_PHYS_PLANE_STRAIN;
+  s.disc.material.poisson = 0.3;
   check_max(&s, "2D plane strain free");
   s = spec2(10, 9, 2.4, "stress-quad");
-  s.physics = MFS_PHYS_PLANE_STRAIN;
+  s.disc.material.physics = MFS_PHYS_PLANE_STRAIN;
   s.fixed = MFS_FIX_BOUNDARY;
-  s.consistent_mass = 1;
+  s.disc.consistent_mass = 1;
   check_max(&s, "2D plane strain fixed consistent");
   /* shape functions that read particle volumes (boundary volumes differ) */
   s = spec2(12, 12, 2.2, "stress-star");
-  s.shape = &mfs_shape_rl;
+  s.disc.shape = &mfs_shape_rl;
   s.fixed = MFS_FIX_BOUNDARY;
   check_max(&s, "2D fixed stress-star rl");
   s = spec2(12, 10, 2.0, "nodal");
-  s.shape = &mfs_shape_sph;
+  s.disc.shape = &mfs_shape_sph;
   check_max(&s, "2D free nodal sph");
   s = spec1(45, 2.0, "nodal");
-  s.shape = &mfs_shape_rl;
+  s.disc.shape = &mfs_shape_rl;
   check_max(&s, "1D free nodal rl");
   s = spec1(45, 2.5, "gauss2");
-  s.shape = &mfs_shape_kb;
-  s.kernel = &mfs_kernel_wendland2;
+  s.disc.shape = &mfs_shape_kb;
+  s.disc.kernel = &mfs_kernel_wendland2;
   check_max(&s, "1D free gauss2 kb wendland2");
 }
 
@@ -159,12 +159,13 @@ static void check_bloch(const mfs_model_spec *s, const char *what)
   mfs_pencil P = {m->K, m->M, m->m};
   size_t n = m->n;
   double *w = malloc(n * sizeof *w), *b = malloc(n * sizeof *b);
-  int st = mfs_eig_dense(&P, w);
+  mfs_status st = mfs_eig_dense(&P, w);
   CHECK(st == MFS_OK, "%s: dense: %s", what, mfs_strerror(st));
-  mfs_disp_spec ds = {s->dim, s->dim == 1 ? MFS_LATTICE_LINE : MFS_LATTICE_SQUARE,
-                      s->dim == 1 ? 1.0 : m->dy / m->dx, s->quadrature, s->kernel, s->shape,
-                      s->dilation, MFS_FRAME_LAGRANGIAN, s->physics, s->poisson, 1.0,
-                      s->consistent_mass, 0.0};
+  mfs_disp_spec ds = {.disc = s->disc, .stretch = 1.0};
+  ds.disc.source = (mfs_source){.lattice = s->disc.source.lattice,
+                                .spacing = 1.0,
+                                .gamma = s->disc.dim == 1 ? 1.0 : m->dy / m->dx};
+  ds.disc.frame = MFS_FRAME_LAGRANGIAN;
   mfs_disp_plan *pl = mfs_disp_plan_alloc(&ds, &st);
   CHECK(pl != NULL, "%s: dispersion plan: %s", what, mfs_strerror(st));
   if (!pl) {
@@ -174,13 +175,13 @@ static void check_bloch(const mfs_model_spec *s, const char *what)
     return;
   }
   int nb = mfs_disp_branches(pl);
-  double c2 = s->modulus / s->density, dx = m->dx;
+  double c2 = s->disc.material.modulus / s->disc.material.density, dx = m->dx;
   size_t cnt = 0;
-  int ny = s->dim == 1 ? 1 : s->ny;
+  int ny = s->disc.dim == 1 ? 1 : s->disc.source.ny;
   for (int my = 0; my < ny; my++)
-    for (int mx = 0; mx < s->nx; mx++) {
+    for (int mx = 0; mx < s->disc.source.nx; mx++) {
       /* wave vector in 1/dx: 2 pi m / N per direction (dy = gamma dx) */
-      double k[2] = {2.0 * M_PI * mx / s->nx, s->dim == 1 ? 0.0 : 2.0 * M_PI * my / (ny * m->dy / dx)};
+      double k[2] = {2.0 * M_PI * mx / s->disc.source.nx, s->disc.dim == 1 ? 0.0 : 2.0 * M_PI * my / (ny * m->dy / dx)};
       double complex K[16], M[16], o[4];
       mfs_disp_symbols(pl, 0.0, k, K, M);
       if (nb == 1) {
@@ -209,27 +210,27 @@ static void check_bloch(const mfs_model_spec *s, const char *what)
 static void test_bloch(void)
 {
   mfs_model_spec s = spec1(24, 2.0, "nodal");
-  s.periodic = 1;
-  s.lx = 2.37;
+  s.disc.source.periodic = 1;
+  s.disc.source.lx = 2.37;
   check_bloch(&s, "1D periodic nodal");
   s = spec1(30, 1.5, "stress");
-  s.periodic = 1;
+  s.disc.source.periodic = 1;
   check_bloch(&s, "1D periodic stress");
   s = spec1(32, 2.6, "gauss2");
-  s.periodic = 1;
-  s.consistent_mass = 1;
-  s.kernel = &mfs_kernel_quartic;
-  s.modulus = 3.3;
+  s.disc.source.periodic = 1;
+  s.disc.consistent_mass = 1;
+  s.disc.kernel = &mfs_kernel_quartic;
+  s.disc.material.modulus = 3.3;
   check_bloch(&s, "1D periodic gauss2 consistent quartic");
   s = spec2(10, 12, 2.0, "nodal");
-  s.periodic = 1;
-  s.lx = 1.0;
-  s.ly = 1.2;
+  s.disc.source.periodic = 1;
+  s.disc.source.lx = 1.0;
+  s.disc.source.ly = 1.2;
   check_bloch(&s, "2D periodic nodal");
   s = spec2(10, 10, 1.8, "gauss2");
-  s.periodic = 1;
-  s.lx = s.ly = 1.0;
-  s.consistent_mass = 1;
+  s.disc.source.periodic = 1;
+  s.disc.source.lx = s.disc.source.ly = 1.0;
+  s.disc.consistent_mass = 1;
   check_bloch(&s, "2D periodic gauss2 consistent");
 }
 
@@ -242,7 +243,7 @@ static void check_zero(const mfs_model_spec *s, int want, int want_rigid, const 
   mfs_pencil P = {m->K, m->M, m->m};
   double lam, tol = 1e-8;
   mfs_eig_info info;
-  int st = mfs_eig_max(&P, NULL, &lam, NULL, &info);
+  mfs_status st = mfs_eig_max(&P, NULL, &lam, NULL, &info);
   CHECK(st == MFS_OK, "%s: max: %s", what, mfs_strerror(st));
   mfs_zero_opts zo = {tol, 0, 0, 1};
   mfs_zero_modes z;
@@ -279,33 +280,33 @@ static void check_zero(const mfs_model_spec *s, int want, int want_rigid, const 
 static void test_zero_modes(void)
 {
   mfs_model_spec s = spec1(40, 2.0, "nodal");
-  s.periodic = 1;
+  s.disc.source.periodic = 1;
   check_zero(&s, 2, 1, "1D periodic nodal N even: rigid + sawtooth");
-  s.nx = 41;
+  s.disc.source.nx = 41;
   check_zero(&s, 1, 1, "1D periodic nodal N odd");
   s = spec1(40, 2.0, "stress");
-  s.periodic = 1;
+  s.disc.source.periodic = 1;
   check_zero(&s, 1, 1, "1D periodic stress points");
   s = spec1(41, 2.0, "gauss2");
   check_zero(&s, 1, 1, "1D free gauss2");
   s.fixed = MFS_FIX_ENDS;
   check_zero(&s, 0, 0, "1D fixed gauss2");
   s = spec1(30, 2.0, "nodal");
-  s.periodic = 1;
-  s.consistent_mass = 1;
+  s.disc.source.periodic = 1;
+  s.disc.consistent_mass = 1;
   check_zero(&s, 2, 1, "1D periodic nodal consistent");
   s = spec2(10, 10, 2.0, "nodal");
-  s.periodic = 1;
+  s.disc.source.periodic = 1;
   check_zero(&s, 4, 1, "2D periodic nodal: rigid + 3 spurious");
   s = spec2(10, 9, 2.0, "gauss2");
   check_zero(&s, 1, 1, "2D free gauss2");
   s = spec2(8, 8, 2.0, "gauss2");
-  s.physics = MFS_PHYS_PLANE_STRAIN;
+  s.disc.material.physics = MFS_PHYS_PLANE_STRAIN;
   check_zero(&s, 3, 3, "2D plane strain free gauss2: 2 translations + rotation");
 
   /* the sawtooth (-1)^I is in the null space of periodic nodal integration */
   s = spec1(40, 2.0, "nodal");
-  s.periodic = 1;
+  s.disc.source.periodic = 1;
   mfs_model *m = build(&s, "sawtooth");
   if (m) {
     double *x = malloc(m->n * sizeof *x), *y = malloc(m->n * sizeof *y), ky = 0.0, kmax = 0.0;
@@ -330,13 +331,13 @@ static void test_fig17(void)
 {
   for (int cons = 0; cons < 2; cons++) {
     mfs_model_spec s = spec1(41, 1.0, "gauss2");
-    s.consistent_mass = cons;
+    s.disc.consistent_mass = cons;
     mfs_model *m = build(&s, "fig17 D = 1");
     if (!m)
       continue;
     mfs_pencil P = {m->K, m->M, m->m};
     double lam;
-    int st = mfs_eig_max(&P, NULL, &lam, NULL, NULL);
+    mfs_status st = mfs_eig_max(&P, NULL, &lam, NULL, NULL);
     CHECK(st == MFS_OK, "fig17 D = 1: %s", mfs_strerror(st));
     CHECK_NEAR(lam * m->dx * m->dx, cons ? 12.0 : 4.0, 1e-10, "fig17 D = 1 %s",
                cons ? "consistent" : "lumped");
@@ -350,7 +351,7 @@ static void test_fig17(void)
       continue;
     mfs_pencil P = {m->K, m->M, m->m};
     double lam;
-    int st = mfs_eig_max(&P, NULL, &lam, NULL, NULL);
+    mfs_status st = mfs_eig_max(&P, NULL, &lam, NULL, NULL);
     CHECK(st == MFS_OK, "fig17 D = %g: %s", D, mfs_strerror(st));
     mfs_bound_result b;
     mfs_bound_of_model(m, &b);
@@ -371,11 +372,11 @@ static void test_negative_phi(void)
 {
   mfs_model_spec s = spec1(41, 1.25, "gauss2");
   mfs_bound_result b;
-  int st = mfs_bound_model(&s, &b, NULL);
+  mfs_status st = mfs_bound_model(&s, &b, NULL);
   CHECK(st == MFS_OK && b.negative_phi > 0, "D = 1.25: negative phi points %zu", b.negative_phi);
   /* on a periodic lattice the interior MLS functions at D = 2 are positive */
   s = spec1(40, 2.0, "gauss2");
-  s.periodic = 1;
+  s.disc.source.periodic = 1;
   st = mfs_bound_model(&s, &b, NULL);
   CHECK(st == MFS_OK && b.negative_phi == 0, "periodic D = 2: negative phi %zu", b.negative_phi);
   CHECK(b.evaluated == 2, "periodic gauss2: %zu distinct points evaluated, want 2", b.evaluated);
@@ -392,8 +393,8 @@ static void test_closed_forms(void)
              "continuum limit of the interior lambda^Q (1D cubic)");
   /* the interior lambda^Q of a fine periodic lattice tends to the continuum value */
   mfs_model_spec s = spec1(400, 12.0, "gauss1");
-  s.periodic = 1;
-  s.shape = &mfs_shape_sph;
+  s.disc.source.periodic = 1;
+  s.disc.shape = &mfs_shape_sph;
   mfs_bound_result b;
   mfs_bound_model(&s, &b, NULL);
   double h = 12.0 / 400;
@@ -403,10 +404,10 @@ static void test_closed_forms(void)
 
   /* Fourier: D = 1 gauss2 lumped is the linear element, omega^2 dx^2/c^2 = 4 sin^2(k dx/2) */
   s = spec1(41, 1.0, "gauss2");
-  s.modulus = 2.385;
-  s.density = 0.7;
+  s.disc.material.modulus = 2.385;
+  s.disc.material.density = 0.7;
   double lf, kf;
-  int st = mfs_bound_fourier(&s, 101, 1, &lf, &kf, NULL);
+  mfs_status st = mfs_bound_fourier(&s, 101, 1, &lf, &kf, NULL);
   CHECK(st == MFS_OK, "fourier: %s", mfs_strerror(st));
   CHECK_NEAR(lf * (1.0 / 40) * (1.0 / 40) * 0.7 / 2.385, 4.0, 1e-10, "Fourier max, linear element");
   CHECK_NEAR(kf, 1.0, 1e-6, "Fourier max at kappa = 1");
@@ -416,7 +417,7 @@ static void test_closed_forms(void)
   CHECK_NEAR(lf / 1600.0, 1.0, 1e-6, "Table II nodal integration");
   /* the periodic model with N even samples kappa = 1: its lambda_max is the Fourier max */
   s = spec1(40, 2.0, "stress");
-  s.periodic = 1;
+  s.disc.source.periodic = 1;
   mfs_model *m = build(&s, "periodic stress");
   if (m) {
     mfs_pencil P = {m->K, m->M, m->m};
@@ -436,22 +437,30 @@ static void test_closed_forms(void)
 static void test_errors(void)
 {
   mfs_model_spec s = spec1(20, 2.0, "gauss2");
-  s.periodic = 1;
+  s.disc.source.periodic = 1;
   s.fixed = MFS_FIX_ENDS;
-  CHECK(mfs_model_spec_check(&s) == MFS_EINVAL, "periodic and fixed");
+  const char *field = NULL;
+  CHECK(mfs_model_spec_check(&s, &field) == MFS_EINVAL && strcmp(field, "fixed") == 0,
+        "periodic and fixed: field %s", field);
   s = spec1(4, 2.0, "gauss2");
-  s.periodic = 1;
-  CHECK(mfs_model_spec_check(&s) == MFS_ETOOSMALL, "periodic box of 4 nodes at D = 2");
-  int st;
+  s.disc.source.periodic = 1;
+  CHECK(mfs_model_spec_check(&s, &field) == MFS_ETOOSMALL && strcmp(field, "disc.source.nx") == 0,
+        "periodic box of 4 nodes at D = 2: field %s", field);
+  mfs_status st;
   CHECK(mfs_model_alloc(&s, &st, NULL) == NULL && st == MFS_ETOOSMALL, "alloc too small");
   s = spec1(20, 2.0, "gauss2");
-  s.modulus = -1.0;
-  CHECK(mfs_model_spec_check(&s) == MFS_EINVAL, "negative modulus");
+  s.disc.material.modulus = -1.0;
+  CHECK(mfs_model_spec_check(&s, &field) == MFS_EINVAL &&
+          strcmp(field, "disc.material.modulus") == 0,
+        "negative modulus: field %s", field);
   s = spec1(20, 2.0, "stress-quad");
-  CHECK(mfs_model_spec_check(&s) == MFS_EINVAL, "2D rule in 1D");
+  CHECK(mfs_model_spec_check(&s, &field) == MFS_EINVAL && strcmp(field, "disc.quadrature") == 0,
+        "2D rule in 1D: field %s", field);
   s = spec2(10, 10, 2.0, "gauss2");
   s.fixed = MFS_FIX_ENDS;
-  CHECK(mfs_model_spec_check(&s) == MFS_EINVAL, "ends in 2D");
+  CHECK(mfs_model_spec_check(&s, &field) == MFS_EINVAL && strcmp(field, "fixed") == 0,
+        "ends in 2D: field %s", field);
+  CHECK(mfs_model_spec_check(&s, NULL) == MFS_EINVAL, "field may be NULL");
   s = spec1(20, 0.5, "gauss2");
   size_t bad = 99;
   CHECK(mfs_model_alloc(&s, &st, &bad) == NULL && st == MFS_ESINGULAR, "D = 0.5: %s",

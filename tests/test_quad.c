@@ -42,11 +42,15 @@ static const config configs[] = {
    {"nodal", "stress-hex", "gauss1", "gauss2", "gauss3", NULL}},
 };
 
+/* The point-generation kinds of a rule (mfs_quad.h). */
+#define IS_GAUSS(t) ((t)->gauss_n > 0)
+#define IS_NODAL(t) ((t)->node_share == 1.0 && !(t)->centres && !IS_GAUSS(t))
+
 static mfs_particles *make(const config *c, int periodic, double perturb, unsigned long seed)
 {
   mfs_lattice_spec s = {c->dim, c->lat, c->nx, c->ny, DX, c->gamma, periodic, c->cells, perturb,
                         seed};
-  int st;
+  mfs_status st;
   mfs_particles *p = mfs_lattice_alloc(&s, &st);
   CHECK(p && st == MFS_OK, "%s: mfs_lattice_alloc status %d", c->name, st);
   return p;
@@ -144,16 +148,16 @@ static void check_rule(const config *c, const char *rname, int periodic, double 
   char ctx[160];
   snprintf(ctx, sizeof ctx, "%s %s %s perturb %.1f", c->name, rname,
            periodic ? "periodic" : "finite", perturb);
-  mfs_quad_rule rule;
-  int st = mfs_quad_rule_parse(rname, &rule);
-  CHECK(st == MFS_OK, "%s: parse status %d", ctx, st);
-  if (st != MFS_OK)
+  const mfs_quad_type *rule = mfs_quad_find(rname);
+  mfs_status st;
+  CHECK(rule != NULL, "%s: no rule of that name", ctx);
+  if (!rule)
     return;
-  CHECK(mfs_quad_rule_check(&rule, c->dim, c->lat) == MFS_OK, "%s: rule check", ctx);
+  CHECK(mfs_quad_applies(rule, c->dim, c->lat), "%s: rule check", ctx);
   mfs_particles *p = make(c, periodic, perturb, 1000003 + (unsigned long)c->nx * 7 + periodic);
   if (!p)
     return;
-  mfs_quad *q = mfs_quad_alloc(&rule, p, &st);
+  mfs_quad *q = mfs_quad_alloc(rule, p, &st);
   CHECK(q && st == MFS_OK, "%s: mfs_quad_alloc status %d", ctx, st);
   if (!q) {
     mfs_particles_free(p);
@@ -177,9 +181,9 @@ static void check_rule(const config *c, const char *rname, int periodic, double 
     }
 
   /* number of points and the particle points */
-  size_t want_n = rule.kind == MFS_QK_NODAL ? p->n
-                  : rule.kind == MFS_QK_GAUSS
-                    ? p->ncell * (size_t)(c->dim == 1 ? rule.gauss_n : rule.gauss_n * rule.gauss_n)
+  size_t want_n = IS_NODAL(rule) ? p->n
+                  : IS_GAUSS(rule)
+                    ? p->ncell * (size_t)(c->dim == 1 ? rule->gauss_n : rule->gauss_n * rule->gauss_n)
                     : p->n + p->ncell;
   CHECK(q->n == want_n, "%s: %zu points, want %zu", ctx, q->n, want_n);
   size_t nnode = 0;
@@ -193,16 +197,16 @@ static void check_rule(const config *c, const char *rname, int periodic, double 
       same &= q->x[i * c->dim + k] == p->x[(size_t)I * c->dim + k];
     CHECK(same, "%s: point %zu of node %d not at the particle", ctx, i, I);
   }
-  CHECK(nnode == (rule.kind == MFS_QK_GAUSS ? 0 : p->n), "%s: %zu node points", ctx, nnode);
+  CHECK(nnode == (IS_GAUSS(rule) ? 0 : p->n), "%s: %zu node points", ctx, nnode);
 
   /* prescribed shares on a uniform lattice: a node of volume dx dy (interior
    * or periodic) and a cell pair of area dx dy */
   /* (not the star pattern: its cell-dual node volumes alternate between 4/3
    * and 2/3 dx dy, as the nodes touch 8 or 4 triangles) */
-  if (perturb == 0.0 && rule.kind != MFS_QK_GAUSS && rule.kind != MFS_QK_VORONOI &&
+  if (perturb == 0.0 && !IS_GAUSS(rule) && !rule->voronoi &&
       !(c->cells == MFS_CELLS_STAR && c->dim == 2)) {
     double cell = c->dim == 1 ? DX : DX * p->dy; /* the area of one lattice cell */
-    double share = rule.kind == MFS_QK_NODAL ? 1.0 : rule.kind == MFS_QK_HALF ? 0.5 : 1.0 / 3.0;
+    double share = IS_NODAL(rule) ? 1.0 : rule->node_share == 0.5 ? 0.5 : 1.0 / 3.0;
     double emax = 0.0;
     for (size_t i = 0; i < q->n; i++) {
       int I = q->node[i];
@@ -213,7 +217,7 @@ static void check_rule(const config *c, const char *rname, int periodic, double 
     CHECK(emax <= 1e-14 * cell, "%s: weights differ from %.4g of the cell area by %.3g", ctx,
           share, emax);
   }
-  if (perturb == 0.0 && rule.kind == MFS_QK_VORONOI && periodic) {
+  if (perturb == 0.0 && rule->voronoi && periodic) {
     /* the star pattern on a uniform lattice: by symmetry all centroids have
      * the same Voronoi area, and the nodes two (star centres, i + j even,
      * where 8 triangles meet; and the others, where 4 meet) */
@@ -225,7 +229,7 @@ static void check_rule(const config *c, const char *rname, int periodic, double 
     CHECK(emax <= 1e-12 * wc, "%s: Voronoi weights not equal by symmetry (%.3g)", ctx, emax);
     CHECK(w[0] != w[1], "%s: both node classes have the same Voronoi area", ctx);
   }
-  if (rule.kind == MFS_QK_GAUSS) {
+  if (IS_GAUSS(rule)) {
     /* weights of each cell's points add to its measure (points come per cell) */
     size_t per = q->n / p->ncell;
     double emax = 0.0;
@@ -236,7 +240,7 @@ static void check_rule(const config *c, const char *rname, int periodic, double 
       emax = fmax(emax, fabs(s - mfs_cell_measure(p, c2)));
     }
     CHECK(emax <= 1e-14 * V / p->ncell * 10, "%s: cell weight sums off by %.3g", ctx, emax);
-    check_gauss_exactness(ctx, p, q, rule.gauss_n, perturb > 0.0);
+    check_gauss_exactness(ctx, p, q, rule->gauss_n, perturb > 0.0);
   }
   mfs_quad_free(q);
   mfs_particles_free(p);
@@ -246,16 +250,20 @@ static void check_rule_names(void)
 {
   const char *good[] = {"nodal", "stress", "stress-quad", "stress-tri", "stress-star",
                         "stress-hex", "gauss1", "gauss2", "gauss3", "gauss10"};
-  mfs_quad_rule r;
+  const mfs_quad_type *r;
   for (size_t i = 0; i < sizeof good / sizeof good[0]; i++)
-    CHECK(mfs_quad_rule_parse(good[i], &r) == MFS_OK, "parse \"%s\"", good[i]);
-  CHECK(mfs_quad_rule_parse("gauss3", &r) == MFS_OK && r.kind == MFS_QK_GAUSS && r.gauss_n == 3,
-        "gauss3 is 3 points per direction");
-  CHECK(mfs_quad_rule_parse("gauss10", &r) == MFS_OK && r.gauss_n == 10, "gauss10");
+    CHECK(mfs_quad_find(good[i]) != NULL, "parse \"%s\"", good[i]);
+  r = mfs_quad_find("gauss3");
+  CHECK(r && IS_GAUSS(r) && r->gauss_n == 3, "gauss3 is 3 points per direction");
+  r = mfs_quad_find("gauss10");
+  CHECK(r && r->gauss_n == 10, "gauss10");
+  for (int i = 0; mfs_quad_types[i]; i++)
+    CHECK(mfs_quad_find(mfs_quad_types[i]->name) == mfs_quad_types[i], "find %s",
+          mfs_quad_types[i]->name);
   const char *bad[] = {"gauss0", "gaussx", "foo", "gauss", "gauss11", "gauss01", "gauss2x",
                        "gauss-1", "gauss 2", "Nodal", "stress-", ""};
   for (size_t i = 0; i < sizeof bad / sizeof bad[0]; i++)
-    CHECK(mfs_quad_rule_parse(bad[i], &r) == MFS_EINVAL, "parse \"%s\" not rejected", bad[i]);
+    CHECK(mfs_quad_find(bad[i]) == NULL, "parse \"%s\" not rejected", bad[i]);
 
   struct {
     const char *name;
@@ -274,10 +282,9 @@ static void check_rule_names(void)
     {"gauss2", 2, MFS_LATTICE_HEX, 1},         {"gauss3", 2, MFS_LATTICE_SQUARE, 1},
   };
   for (size_t i = 0; i < sizeof cases / sizeof cases[0]; i++) {
-    mfs_quad_rule_parse(cases[i].name, &r);
-    int st = mfs_quad_rule_check(&r, cases[i].dim, cases[i].lat);
-    CHECK(st == (cases[i].ok ? MFS_OK : MFS_EINVAL), "rule check %s dim %d lattice %d: status %d",
-          cases[i].name, cases[i].dim, (int)cases[i].lat, st);
+    int ok = mfs_quad_applies(mfs_quad_find(cases[i].name), cases[i].dim, cases[i].lat);
+    CHECK(ok == cases[i].ok, "rule check %s dim %d lattice %d: %d", cases[i].name, cases[i].dim,
+          (int)cases[i].lat, ok);
   }
 }
 
@@ -287,7 +294,7 @@ static void check_voronoi(void)
   for (int hex = 0; hex <= 1; hex++) {
     mfs_lattice_spec s = {2, hex ? MFS_LATTICE_HEX : MFS_LATTICE_SQUARE, 12, 10, DX, 1.3717, 1,
                           MFS_CELLS_QUAD, 0.0, 0};
-    int st;
+    mfs_status st;
     mfs_particles *p = mfs_lattice_alloc(&s, &st);
     double *A = malloc(p->n * sizeof *A);
     st = mfs_voronoi_areas(p->n, p->x, &p->box, A);
@@ -305,7 +312,7 @@ static void check_voronoi(void)
     for (int hex = 0; hex <= 1; hex++) {
       mfs_lattice_spec s = {2, hex ? MFS_LATTICE_HEX : MFS_LATTICE_SQUARE, 11, 10, DX, 1.0,
                             periodic, MFS_CELLS_QUAD, 0.3, 77 + periodic + 2 * hex};
-      int st;
+      mfs_status st;
       mfs_particles *p = mfs_lattice_alloc(&s, &st);
       double *A = malloc(p->n * sizeof *A);
       st = mfs_voronoi_areas(p->n, p->x, &p->box, A);
@@ -362,7 +369,7 @@ static void check_search_case(const char *ctx, int dim, size_t n, const double *
   /* and the points themselves */
   for (size_t q = 0; q < 20 && q < n; q++)
     memcpy(y + q * dim, x + q * 3 * dim, dim * sizeof *y);
-  int st;
+  mfs_status st;
   mfs_grid *g = mfs_grid_alloc(dim, n, x, box, R, &st);
   CHECK(g && st == MFS_OK, "%s: grid status %d", ctx, st);
   mfs_nlist *nl = g ? mfs_nlist_build(g, nq, y, r, &st) : NULL;
@@ -410,7 +417,7 @@ static void check_search(gsl_rng *rng)
       /* perturbed lattices (periodic ones have points just outside the box) */
       mfs_lattice_spec s = {dim, dim == 1 ? MFS_LATTICE_LINE : MFS_LATTICE_HEX, dim == 1 ? 97 : 17,
                             16, DX, 1.0, periodic, MFS_CELLS_TRI, 0.3, 5 + periodic};
-      int st;
+      mfs_status st;
       mfs_particles *p = mfs_lattice_alloc(&s, &st);
       CHECK(p != NULL, "search: lattice status %d", st);
       if (!p)

@@ -24,7 +24,7 @@ static mfs_particles *make_set(int dim, mfs_lattice_kind lat, int nx, int ny, do
                                unsigned long seed)
 {
   mfs_lattice_spec s = {dim, lat, nx, ny, dx, 1.0, 0, MFS_CELLS_QUAD, 0.3, seed};
-  int st;
+  mfs_status st;
   mfs_particles *p = mfs_lattice_alloc(&s, &st);
   CHECK(p && st == MFS_OK, "mfs_lattice_alloc status %d", st);
   return p;
@@ -245,7 +245,7 @@ static void check_fd(const mfs_shape_type *sh, const mfs_shape_ctx *c, const mfs
     rmin = fmin(rmin, sqrt(r2));
   }
   double h = (rmin < 1e-3 * c->a ? 1e-7 : 1e-5) * c->a;
-  int st = sh->eval(c, nn, d, v, -1, order, o0, work, &rc);
+  mfs_status st = sh->eval(c, nn, d, v, -1, order, o0, work, &rc);
   CHECK(st == MFS_OK, "%s: fd centre status %d", ctx, st);
   int is_grad = strcmp(sh->name, "kb") != 0 && strcmp(sh->name, "rl") != 0;
   /* scales: the largest entry, at least that of a unit field over length a */
@@ -306,7 +306,7 @@ static void run_set(const char *name, mfs_particles *p, const double *dils, int 
   double *work = malloc(mfs_shape_work_len(dim, MAXNN) * sizeof *work);
   for (int id = 0; id < ndil; id++) {
     double a = dils[id] * p->dx;
-    int st;
+    mfs_status st;
     /* exact support radius for the identities; a little more for the
      * finite differences, so that X +- h keeps every particle it sees */
     double afd = a * (1.0 + 1e-3);
@@ -393,7 +393,7 @@ static void check_singular(void)
 {
   double dx = 0.7313;
   mfs_lattice_spec s = {2, MFS_LATTICE_SQUARE, 6, 5, dx, 1.0, 0, MFS_CELLS_QUAD, 0.0, 0};
-  int st;
+  mfs_status st;
   mfs_particles *p = mfs_lattice_alloc(&s, &st);
   if (!p)
     return;

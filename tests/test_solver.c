@@ -9,16 +9,15 @@
 
 static mfs_solver_spec base(void)
 {
-  mfs_solver_spec s = {.n = 13,
-                       .length = 2.385,
-                       .density = 1.7,
-                       .modulus = 3.1,
-                       .initial_stress = 0.0,
-                       .kernel = &mfs_kernel_quartic,
-                       .shape = &mfs_shape_mls,
-                       .dilation = 2.3,
-                       .frame = MFS_FRAME_LAGRANGIAN,
-                       .quadrature = "nodal",
+  mfs_disc d = mfs_disc_default();
+  d.source = (mfs_source){.lattice = MFS_LATTICE_LINE, .nx = 13, .lx = 2.385};
+  d.material = (mfs_material){.physics = MFS_PHYS_SCALAR, .density = 1.7, .modulus = 3.1};
+  d.kernel = &mfs_kernel_quartic;
+  d.shape = &mfs_shape_mls;
+  d.dilation = 2.3;
+  d.frame = MFS_FRAME_LAGRANGIAN;
+  d.quadrature = &mfs_quad_nodal;
+  mfs_solver_spec s = {.disc = d,
                        .bc = {MFS_BC_FIXED, MFS_BC_FIXED},
                        .bc_until = {INFINITY, INFINITY},
                        .equilibrate = 1};
@@ -30,9 +29,9 @@ static mfs_solver_spec base(void)
 static void test_energy(const char *quad, double S0)
 {
   mfs_solver_spec sp = base();
-  sp.quadrature = quad;
-  sp.initial_stress = S0;
-  int st;
+  sp.disc.quadrature = mfs_quad_find(quad);
+  sp.disc.material.initial_stress = S0;
+  mfs_status st;
   mfs_solver *s = mfs_solver_alloc(&sp, &st, NULL);
   CHECK(s != NULL, "alloc %s: %s", quad, mfs_strerror(st));
   if (!s)
@@ -72,24 +71,25 @@ static void test_energy(const char *quad, double S0)
 static void test_linear_force(void)
 {
   mfs_solver_spec sp = base();
-  sp.initial_stress = 0.37;
+  sp.disc.material.initial_stress = 0.37;
   sp.bc[0] = sp.bc[1] = MFS_BC_FREE;
-  int st;
+  mfs_status st;
   mfs_solver *s = mfs_solver_alloc(&sp, &st, NULL);
   CHECK(s != NULL, "alloc: %s", mfs_strerror(st));
   if (!s)
     return;
-  mfs_lattice_spec ls = {.dim = 1, .lattice = MFS_LATTICE_LINE, .nx = sp.n, .ny = 1,
+  mfs_lattice_spec ls = {.dim = 1, .lattice = MFS_LATTICE_LINE, .nx = sp.disc.source.nx, .ny = 1,
                          .dx = s->dX, .gamma = 1};
   mfs_particles *p = mfs_lattice_alloc(&ls, &st);
-  mfs_quad_rule r;
-  mfs_quad_rule_parse("nodal", &r);
-  mfs_quad *q = mfs_quad_alloc(&r, p, &st);
-  mfs_plan_spec ps = {sp.kernel, sp.shape, sp.dilation, 1, 1e-12};
-  mfs_plan *pl = mfs_plan_alloc(&ps, p, q, &st, NULL);
-  mfs_material mat = {MFS_PHYS_SCALAR, sp.modulus + sp.initial_stress, 0, sp.density};
+  mfs_quad *q = mfs_quad_alloc(&mfs_quad_nodal, p, &st);
+  mfs_plan *pl = mfs_plan_alloc(&sp.disc, p, q, &st);
+  mfs_material mat = {.physics = MFS_PHYS_SCALAR,
+                      .modulus = sp.disc.material.modulus + sp.disc.material.initial_stress,
+                      .density = sp.disc.material.density};
   mfs_csr *K = NULL;
-  CHECK(pl && mfs_assemble_stiffness(pl, &mat, &K) == MFS_OK, "assemble");
+  CHECK(pl && mfs_plan_tabulate(pl, 1, NULL) == MFS_OK &&
+          mfs_assemble_stiffness(pl, &mat, &K) == MFS_OK,
+        "assemble");
   double *u = calloc(s->n, sizeof *u);
   double eps = 1e-7;
   for (size_t I = 0; I < s->n; I++)
@@ -109,7 +109,7 @@ static void test_linear_force(void)
   double msum = 0;
   for (size_t I = 0; I < s->n; I++)
     msum += s->m[I];
-  CHECK_NEAR(msum, sp.density * sp.length, 1e-12, "total mass");
+  CHECK_NEAR(msum, sp.disc.material.density * sp.disc.source.lx, 1e-12, "total mass");
   free(u);
   mfs_csr_free(K);
   mfs_plan_free(pl);
@@ -124,8 +124,8 @@ static void test_linear_force(void)
 static void test_dt(void)
 {
   mfs_solver_spec sp = base();
-  sp.shape = &mfs_shape_sph; /* phi > 0: eq. 132 is a guaranteed bound */
-  int st;
+  sp.disc.shape = &mfs_shape_sph; /* phi > 0: eq. 132 is a guaranteed bound */
+  mfs_status st;
   mfs_solver *s = mfs_solver_alloc(&sp, &st, NULL);
   CHECK(s != NULL, "alloc sph: %s", mfs_strerror(st));
   if (!s)
@@ -170,7 +170,7 @@ static void test_dt(void)
 static void test_orders(void)
 {
   mfs_solver_spec sp = base();
-  int st;
+  mfs_status st;
   mfs_solver *s = mfs_solver_alloc(&sp, &st, NULL);
   if (!s)
     return;
@@ -215,12 +215,12 @@ static void test_orders(void)
 static void test_eulerian_rigid(void)
 {
   mfs_solver_spec sp = base();
-  sp.n = 24;
-  sp.periodic = 1;
-  sp.frame = MFS_FRAME_EULERIAN;
-  sp.initial_stress = 0.29;
+  sp.disc.source.nx = 24;
+  sp.disc.source.periodic = 1;
+  sp.disc.frame = MFS_FRAME_EULERIAN;
+  sp.disc.material.initial_stress = 0.29;
   sp.equilibrate = 0;
-  int st;
+  mfs_status st;
   mfs_solver *s = mfs_solver_alloc(&sp, &st, NULL);
   CHECK(s != NULL, "alloc eulerian: %s", mfs_strerror(st));
   if (!s)
@@ -231,7 +231,7 @@ static void test_eulerian_rigid(void)
   CHECK(mfs_solver_set_state(s, u, NULL) == MFS_OK, "set_state");
   for (size_t I = 0; I < s->n; I++)
     amax = fmax(amax, fabs(s->a[I]));
-  CHECK(amax < 1e-10 * sp.initial_stress / (sp.density * s->dX), "rigid shift: max |a| %.3g",
+  CHECK(amax < 1e-10 * sp.disc.material.initial_stress / (sp.disc.material.density * s->dX), "rigid shift: max |a| %.3g",
         amax);
   CHECK(s->searches >= 2, "neighbour search repeated after a move beyond the skin (%ld)",
         s->searches);
@@ -241,21 +241,21 @@ static void test_eulerian_rigid(void)
 
 static void test_errors(void)
 {
-  int st;
+  mfs_status st;
   mfs_solver_spec sp = base();
-  sp.density = -1;
+  sp.disc.material.density = -1;
   CHECK(mfs_solver_alloc(&sp, &st, NULL) == NULL && st == MFS_EINVAL, "negative density");
   sp = base();
-  sp.quadrature = "stress-quad";
+  sp.disc.quadrature = mfs_quad_find("stress-quad");
   CHECK(mfs_solver_alloc(&sp, &st, NULL) == NULL && st == MFS_EINVAL, "2D rule refused");
   sp = base();
-  sp.dilation = 0.6;
+  sp.disc.dilation = 0.6;
   size_t bad = 99;
   CHECK(mfs_solver_alloc(&sp, &st, &bad) == NULL && st == MFS_ESINGULAR, "D = 0.6: %s",
         mfs_strerror(st));
   sp = base();
-  sp.periodic = 1;
-  sp.n = 4;
+  sp.disc.source.periodic = 1;
+  sp.disc.source.nx = 4;
   CHECK(mfs_solver_alloc(&sp, &st, NULL) == NULL && st == MFS_ETOOSMALL, "too small: %s",
         mfs_strerror(st));
   mfs_scheme sc;

@@ -12,28 +12,23 @@ static const double MU = 2.3, RHO = 1.7, NU = 0.27;
 static mfs_model_spec spec2d(int nx, int ny, double lx, double ly, const char *quad,
                              mfs_physics_kind phys)
 {
-  mfs_model_spec s;
-  mfs_model_spec_default(&s);
-  s.dim = 2;
-  s.nx = nx;
-  s.ny = ny;
-  s.lx = lx;
-  s.ly = ly;
-  s.periodic = 1;
-  s.kernel = &mfs_kernel_cubic;
-  s.shape = &mfs_shape_mls;
-  s.dilation = 2.0;
-  s.quadrature = quad;
-  s.physics = phys;
-  s.modulus = MU;
-  s.density = RHO;
-  s.poisson = NU;
+  mfs_model_spec s = mfs_model_spec_default();
+  mfs_disc *d = &s.disc;
+  d->dim = 2;
+  d->source = (mfs_source){
+    .lattice = MFS_LATTICE_SQUARE, .nx = nx, .ny = ny, .lx = lx, .ly = ly, .periodic = 1};
+  d->kernel = &mfs_kernel_cubic;
+  d->shape = &mfs_shape_mls;
+  d->dilation = 2.0;
+  d->quadrature = mfs_quad_find(quad);
+  d->material =
+    (mfs_material){.physics = phys, .modulus = MU, .density = RHO, .poisson = NU};
   return s;
 }
 
 static mfs_solver2d *alloc_ok(const mfs_model_spec *sp, const char *what)
 {
-  int st;
+  mfs_status st;
   mfs_solver2d *s = mfs_solver2d_alloc(sp, &st, NULL);
   CHECK(s != NULL, "%s: alloc: %s", what, mfs_strerror(st));
   return s;
@@ -53,23 +48,19 @@ static double max_abs(const double *x, size_t n)
 static int bloch_symbol(const mfs_model_spec *sp, int m1, int m2, int branch, double *omega2,
                         double *e)
 {
-  mfs_disp_spec ds = {.dim = 2,
-                      .lattice = MFS_LATTICE_SQUARE,
-                      .gamma = (sp->ly / sp->ny) / (sp->lx / sp->nx),
-                      .quadrature = sp->quadrature,
-                      .kernel = sp->kernel,
-                      .shape = sp->shape,
-                      .dilation = sp->dilation,
-                      .frame = MFS_FRAME_LAGRANGIAN,
-                      .physics = sp->physics,
-                      .poisson = sp->poisson};
-  int st;
+  const mfs_source *src = &sp->disc.source;
+  mfs_disp_spec ds = {.disc = sp->disc, .stretch = 1.0};
+  ds.disc.source = (mfs_source){.lattice = MFS_LATTICE_SQUARE,
+                                .spacing = 1.0,
+                                .gamma = (src->ly / src->ny) / (src->lx / src->nx)};
+  ds.disc.frame = MFS_FRAME_LAGRANGIAN;
+  mfs_status st;
   mfs_disp_plan *pl = mfs_disp_plan_alloc(&ds, &st);
   CHECK(pl != NULL, "disp plan: %s", mfs_strerror(st));
   if (!pl)
     return st;
   int nb = mfs_disp_branches(pl);
-  double k[2] = {2 * M_PI * m1 / sp->nx, 2 * M_PI * m2 / sp->ny / ds.gamma}; /* in 1/dx */
+  double k[2] = {2 * M_PI * m1 / src->nx, 2 * M_PI * m2 / src->ny / ds.disc.source.gamma};
   double complex K[4], M[4], w2[2];
   st = mfs_disp_symbols(pl, 0.0, k, K, M);
   CHECK(st == MFS_OK && nb <= 2, "symbols: %s, %d branches", mfs_strerror(st), nb);
@@ -117,7 +108,8 @@ static void test_bloch(const mfs_model_spec *sp, int m1, int m2, int branch,
 {
   char what[96];
   snprintf(what, sizeof what, "bloch %s %s k=(%d,%d) branch %d %s",
-           sp->physics == MFS_PHYS_SCALAR ? "anti-plane" : "plane-strain", sp->quadrature, m1,
+           sp->disc.material.physics == MFS_PHYS_SCALAR ? "anti-plane" : "plane-strain",
+           sp->disc.quadrature->name, m1,
            m2, branch, mfs_scheme_name(scheme));
   double w2n, e[2];
   if (bloch_symbol(sp, m1, m2, branch, &w2n, e) != MFS_OK)
@@ -127,7 +119,7 @@ static void test_bloch(const mfs_model_spec *sp, int m1, int m2, int branch,
     return;
   size_t n = s->n;
   double dx = s->model->dx, omega2 = w2n * MU / RHO / (dx * dx);
-  double kx = 2 * M_PI * m1 / sp->lx, ky = 2 * M_PI * m2 / sp->ly;
+  double kx = 2 * M_PI * m1 / sp->disc.source.lx, ky = 2 * M_PI * m2 / sp->disc.source.ly;
   double *u0 = malloc(n * sizeof *u0);
   for (size_t i = 0; i < n; i++)
     u0[i] = 0.731 * e[s->comp[i]] * cos(kx * s->X[i] + ky * s->Y[i]);
@@ -147,7 +139,7 @@ static void test_bloch(const mfs_model_spec *sp, int m1, int m2, int branch,
                                                 : 1 + z + z * z / 2 + z * z * z / 6 + z * z * z * z / 24;
   double complex Rn = 1.0;
   double err = 0.0;
-  int st = MFS_OK;
+  mfs_status st = MFS_OK;
   for (long it = 1; it <= nsteps && st == MFS_OK; it++) {
     st = mfs_solver2d_step(s, scheme);
     Rn *= R;
@@ -273,7 +265,7 @@ static void remove_rigid(const mfs_solver2d *s, double *v)
 static void test_energy(mfs_fix_kind fixed, const char *quad, double dtfrac, double osc_tol)
 {
   mfs_model_spec sp = spec2d(12, 10, 2.385, 1.9, quad, MFS_PHYS_PLANE_STRAIN);
-  sp.periodic = 0;
+  sp.disc.source.periodic = 0;
   sp.fixed = fixed;
   char what[64];
   snprintf(what, sizeof what, "%s plate %s %.1f dt_crit",
@@ -282,7 +274,7 @@ static void test_energy(mfs_fix_kind fixed, const char *quad, double dtfrac, dou
   if (!s)
     return;
   size_t n = s->n;
-  double *v = malloc(n * sizeof *v), x0 = 0.41 * sp.lx, y0 = 0.57 * sp.ly, w = 0.35 * sp.lx;
+  double *v = malloc(n * sizeof *v), x0 = 0.41 * sp.disc.source.lx, y0 = 0.57 * sp.disc.source.ly, w = 0.35 * sp.disc.source.lx;
   for (size_t i = 0; i < n; i++) {
     double r2 = (s->X[i] - x0) * (s->X[i] - x0) + (s->Y[i] - y0) * (s->Y[i] - y0);
     v[i] = (s->comp[i] ? 0.35 : 0.83) * exp(-r2 / (w * w));
@@ -296,7 +288,7 @@ static void test_energy(mfs_fix_kind fixed, const char *quad, double dtfrac, dou
   mfs_solver2d_energy(s, &k, &p, &h0);
   e0 = k + p;
   double emin = e0, emax = e0, hmin = h0, hmax = h0, first = 0.0, last = 0.0;
-  int st = MFS_OK;
+  mfs_status st = MFS_OK;
   for (int it = 1; it <= NSTEP && st == MFS_OK; it++) {
     st = mfs_solver2d_step(s, MFS_SCHEME_LEAPFROG);
     double h;
@@ -363,7 +355,7 @@ static void test_dt(mfs_physics_kind phys, const char *quad)
     mfs_solver2d_reset(s);
     mfs_solver2d_set_state(s, top, NULL);
     double g = 0.0;
-    int st = MFS_OK;
+    mfs_status st = MFS_OK;
     for (int it = 0; it < 400 && st == MFS_OK; it++) {
       st = mfs_solver2d_step(s, MFS_SCHEME_LEAPFROG);
       g = fmax(g, max_abs(s->u, n) / amp);
@@ -387,30 +379,30 @@ static void test_dt(mfs_physics_kind phys, const char *quad)
 /* Test 5.  Error returns, helpers, 1D models. */
 static void test_errors(void)
 {
-  int st;
+  mfs_status st;
   size_t bad;
   CHECK(mfs_solver2d_alloc(NULL, &st, &bad) == NULL && st == MFS_EINVAL, "NULL spec: %s",
         mfs_strerror(st));
   mfs_model_spec sp = spec2d(10, 9, 1.7, 1.53, "gauss2", MFS_PHYS_PLANE_STRAIN);
-  sp.consistent_mass = 1;
+  sp.disc.consistent_mass = 1;
   CHECK(mfs_solver2d_alloc(&sp, &st, &bad) == NULL && st == MFS_EINVAL, "consistent mass: %s",
         mfs_strerror(st));
-  sp.consistent_mass = 0;
-  sp.nx = 1;
+  sp.disc.consistent_mass = 0;
+  sp.disc.source.nx = 1;
   CHECK(mfs_solver2d_alloc(&sp, &st, &bad) == NULL && st == MFS_EINVAL, "nx = 1: %s",
         mfs_strerror(st));
-  sp.nx = 4;
+  sp.disc.source.nx = 4;
   CHECK(mfs_solver2d_alloc(&sp, &st, &bad) == NULL && st == MFS_ETOOSMALL, "periodic nx = 4: %s",
         mfs_strerror(st));
-  sp.nx = 10;
-  sp.quadrature = "gauss0";
+  sp.disc.source.nx = 10;
+  sp.disc.quadrature = mfs_quad_find("gauss0");
   CHECK(mfs_solver2d_alloc(&sp, &st, &bad) == NULL && st == MFS_EINVAL, "quadrature: %s",
         mfs_strerror(st));
-  sp.quadrature = "gauss2";
-  sp.dilation = 0.6; /* too few neighbours: singular moment matrix */
+  sp.disc.quadrature = mfs_quad_find("gauss2");
+  sp.disc.dilation = 0.6; /* too few neighbours: singular moment matrix */
   CHECK(mfs_solver2d_alloc(&sp, &st, &bad) == NULL && st == MFS_ESINGULAR, "D = 0.6: %s",
         mfs_strerror(st));
-  sp.dilation = 2.0;
+  sp.disc.dilation = 2.0;
 
   mfs_solver2d *s = alloc_ok(&sp, "errors");
   if (!s)
@@ -444,16 +436,16 @@ static void test_errors(void)
     okn &= mfs_solver2d_dof(s, P, s->comp[i]) == (long)i;
   }
   CHECK(okn, "nearest / dof round trip");
-  CHECK(mfs_solver2d_nearest(s, sp.lx - 0.2 * s->model->dx, -0.4 * s->model->dy) == 0,
+  CHECK(mfs_solver2d_nearest(s, sp.disc.source.lx - 0.2 * s->model->dx, -0.4 * s->model->dy) == 0,
         "periodic wrap");
-  CHECK(mfs_solver2d_nearest(s, 3.1 * s->model->dx, 2.2 * s->model->dy + sp.ly) == 2 * 10 + 3,
+  CHECK(mfs_solver2d_nearest(s, 3.1 * s->model->dx, 2.2 * s->model->dy + sp.disc.source.ly) == 2 * 10 + 3,
         "periodic wrap y");
   CHECK(mfs_solver2d_dof(s, 5, 2) == -1 && mfs_solver2d_dof(s, 90, 0) == -1, "dof out of range");
   free(u);
   mfs_solver2d_free(s);
 
   /* fixed boundary: boundary particles have no dof */
-  sp.periodic = 0;
+  sp.disc.source.periodic = 0;
   sp.fixed = MFS_FIX_BOUNDARY;
   s = alloc_ok(&sp, "fixed");
   if (s) {
@@ -467,16 +459,15 @@ static void test_errors(void)
   }
 
   /* 1D models are accepted: Y = 0, the 1D Bloch identity */
-  mfs_model_spec s1;
-  mfs_model_spec_default(&s1);
-  s1.nx = 23;
-  s1.lx = 2.385;
-  s1.periodic = 1;
-  s1.modulus = 3.1;
-  s1.density = 0.7;
+  mfs_model_spec s1 = mfs_model_spec_default();
+  s1.disc.source.nx = 23;
+  s1.disc.source.lx = 2.385;
+  s1.disc.source.periodic = 1;
+  s1.disc.material.modulus = 3.1;
+  s1.disc.material.density = 0.7;
   s = alloc_ok(&s1, "1D");
   if (s) {
-    double kx = 2 * M_PI * 4 / s1.lx, *u1 = malloc(s->n * sizeof *u1);
+    double kx = 2 * M_PI * 4 / s1.disc.source.lx, *u1 = malloc(s->n * sizeof *u1);
     for (size_t i = 0; i < s->n; i++)
       u1[i] = cos(kx * s->X[i]);
     mfs_solver2d_set_state(s, u1, NULL);
@@ -486,7 +477,7 @@ static void test_errors(void)
       for (size_t i = 0; i < s->n; i++)
         err = fmax(err, fabs(s->u[i] - cos(k * th) * u1[i]));
     }
-    CHECK(max_abs(s->Y, s->n) == 0.0 && mfs_solver2d_nearest(s, 0.9 * s1.lx / 23, 7.0) == 1,
+    CHECK(max_abs(s->Y, s->n) == 0.0 && mfs_solver2d_nearest(s, 0.9 * s1.disc.source.lx / 23, 7.0) == 1,
           "1D helpers");
     CHECK(err < 1e-10, "1D Bloch mode: error %.3g", err);
     free(u1);

@@ -69,13 +69,13 @@ static void check_lattice(void)
   bad[12].s.lattice = MFS_LATTICE_LINE;
   bad[13].s.dim = 1;
   for (size_t i = 0; i < sizeof bad / sizeof bad[0]; i++) {
-    int st = MFS_OK;
+    mfs_status st = MFS_OK;
     mfs_particles *p = mfs_lattice_alloc(&bad[i].s, &st);
     CHECK(p == NULL && st == MFS_EINVAL, "mfs_lattice_alloc %s: status %d, %s", bad[i].what, st,
           p ? "not NULL" : "NULL");
     mfs_particles_free(p);
   }
-  int st = -1;
+  mfs_status st = -1;
   mfs_particles *p = mfs_lattice_alloc(&good, &st);
   CHECK(p && st == MFS_OK, "good spec: status %d", st);
   mfs_particles_free(p);
@@ -93,7 +93,7 @@ static void check_lattice(void)
 static void check_neighbor(void)
 {
   mfs_lattice_spec s = {2, MFS_LATTICE_SQUARE, 6, 6, DX, 1.0, 1, MFS_CELLS_QUAD, 0.0, 0};
-  int st;
+  mfs_status st;
   mfs_particles *p = mfs_lattice_alloc(&s, &st);
   double L = 6 * DX;
   /* periodic box not larger than twice the radius */
@@ -133,12 +133,12 @@ static void check_neighbor(void)
 
 static void check_quad(void)
 {
-  mfs_quad_rule r;
-  CHECK(mfs_quad_rule_parse("gauss0", &r) == MFS_EINVAL, "parse gauss0");
-  CHECK(mfs_quad_rule_parse("gaussx", &r) == MFS_EINVAL, "parse gaussx");
-  CHECK(mfs_quad_rule_parse("foo", &r) == MFS_EINVAL, "parse foo");
+  CHECK(mfs_quad_find("gauss0") == NULL, "parse gauss0");
+  CHECK(mfs_quad_find("gaussx") == NULL, "parse gaussx");
+  CHECK(mfs_quad_find("foo") == NULL, "parse foo");
+  CHECK(mfs_quad_find(NULL) == NULL, "parse NULL");
   mfs_lattice_spec s = {2, MFS_LATTICE_SQUARE, 6, 5, DX, 1.0, 0, MFS_CELLS_TRI, 0.2, 3};
-  int st;
+  mfs_status st;
   mfs_particles *tri = mfs_lattice_alloc(&s, &st);
   s.cells = MFS_CELLS_STAR;
   mfs_particles *star = mfs_lattice_alloc(&s, &st);
@@ -164,17 +164,15 @@ static void check_quad(void)
     {"stress-star", tri, "star centroids on one-diagonal cells"},
   };
   for (size_t i = 0; i < sizeof bad / sizeof bad[0]; i++) {
-    mfs_quad_rule_parse(bad[i].rule, &r);
-    mfs_quad *q = mfs_quad_alloc(&r, bad[i].p, &st);
+    mfs_quad *q = mfs_quad_alloc(mfs_quad_find(bad[i].rule), bad[i].p, &st);
     CHECK(!q && st == MFS_EINVAL, "mfs_quad_alloc %s: status %d", bad[i].why, st);
     mfs_quad_free(q);
   }
-  mfs_quad_rule_parse("stress-quad", &r);
-  CHECK(mfs_quad_rule_check(&r, 1, MFS_LATTICE_LINE) == MFS_EINVAL, "check stress-quad 1D");
-  mfs_quad_rule_parse("stress-hex", &r);
-  CHECK(mfs_quad_rule_check(&r, 2, MFS_LATTICE_SQUARE) == MFS_EINVAL, "check stress-hex square");
-  mfs_quad_rule_parse("stress", &r);
-  CHECK(mfs_quad_rule_check(&r, 2, MFS_LATTICE_SQUARE) == MFS_EINVAL, "check stress 2D");
+  CHECK(!mfs_quad_applies(&mfs_quad_stress_quad, 1, MFS_LATTICE_LINE), "check stress-quad 1D");
+  CHECK(!mfs_quad_applies(&mfs_quad_stress_hex, 2, MFS_LATTICE_SQUARE), "check stress-hex square");
+  CHECK(!mfs_quad_applies(&mfs_quad_stress, 2, MFS_LATTICE_SQUARE), "check stress 2D");
+  CHECK(!mfs_quad_applies(NULL, 1, MFS_LATTICE_LINE), "check no rule");
+  CHECK(!mfs_quad_alloc(NULL, line, &st) && st == MFS_EINVAL, "mfs_quad_alloc without a rule");
   mfs_quad_free(NULL);
 
   /* Voronoi: not 2D; a point outside a finite box */
@@ -195,40 +193,45 @@ static void check_quad(void)
 static void check_plan(void)
 {
   mfs_lattice_spec s = {2, MFS_LATTICE_SQUARE, 8, 7, DX, 1.0, 0, MFS_CELLS_QUAD, 0.0, 0};
-  int st;
+  mfs_status st;
   mfs_particles *p = mfs_lattice_alloc(&s, &st);
-  mfs_quad_rule r;
-  mfs_quad_rule_parse("nodal", &r);
-  mfs_quad *q = mfs_quad_alloc(&r, p, &st);
-  mfs_plan_spec ps = {&mfs_kernel_cubic, &mfs_shape_mls, 0.0, 1, 1e-12};
+  mfs_quad *q = mfs_quad_alloc(&mfs_quad_nodal, p, &st);
+  mfs_disc ps = mfs_disc_default();
+  ps.dilation = 0.0;
   size_t bad = SIZE_MAX;
-  mfs_plan *pl = mfs_plan_alloc(&ps, p, q, &st, &bad);
+  mfs_plan *pl = mfs_plan_alloc(&ps, p, q, &st);
   CHECK(!pl && st == MFS_EINVAL, "plan dilation 0: status %d", st);
   ps.dilation = -2.0;
-  pl = mfs_plan_alloc(&ps, p, q, &st, &bad);
+  pl = mfs_plan_alloc(&ps, p, q, &st);
   CHECK(!pl && st == MFS_EINVAL, "plan dilation < 0: status %d", st);
   ps.dilation = 2.385;
-  ps.order = 3;
-  pl = mfs_plan_alloc(&ps, p, q, &st, &bad);
-  CHECK(!pl && st == MFS_EINVAL, "plan order 3: status %d", st);
-  ps.order = 1;
+  pl = mfs_plan_alloc(&ps, p, q, &st);
+  CHECK(pl && st == MFS_OK, "plan D = 2.385: status %d", st);
+  st = mfs_plan_tabulate(pl, 3, &bad);
+  CHECK(st == MFS_EINVAL && mfs_plan_order(pl) == 0, "plan order 3: status %d", st);
+  CHECK(mfs_plan_tabulate(NULL, 1, &bad) == MFS_EINVAL, "tabulate without a plan");
+  mfs_plan_free(pl);
   ps.kernel = NULL;
-  pl = mfs_plan_alloc(&ps, p, q, &st, &bad);
+  pl = mfs_plan_alloc(&ps, p, q, &st);
   CHECK(!pl && st == MFS_EINVAL, "plan without kernel: status %d", st);
   ps.kernel = &mfs_kernel_cubic;
   ps.shape = NULL;
-  pl = mfs_plan_alloc(&ps, p, q, &st, &bad);
+  pl = mfs_plan_alloc(&ps, p, q, &st);
   CHECK(!pl && st == MFS_EINVAL, "plan without shape: status %d", st);
   ps.shape = &mfs_shape_mls;
   /* too small a dilation: every node sees only itself */
   ps.dilation = 0.9;
   bad = SIZE_MAX;
-  pl = mfs_plan_alloc(&ps, p, q, &st, &bad);
-  CHECK(!pl && st == MFS_ESINGULAR, "plan D = 0.9: status %d", st);
+  pl = mfs_plan_alloc(&ps, p, q, &st);
+  CHECK(pl && st == MFS_OK, "plan D = 0.9, symbolic: status %d", st);
+  st = mfs_plan_tabulate(pl, 1, &bad);
+  CHECK(st == MFS_ESINGULAR, "plan D = 0.9: status %d", st);
   /* every point is singular: the first one is named */
   CHECK(bad == 0, "plan D = 0.9: bad point %zu, want 0", bad);
+  mfs_plan_free(pl);
   ps.dilation = 2.385;
-  pl = mfs_plan_alloc(&ps, p, q, &st, NULL); /* bad may be NULL */
+  pl = mfs_plan_alloc(&ps, p, q, &st);
+  st = mfs_plan_tabulate(pl, 1, NULL); /* bad may be NULL */
   CHECK(pl && st == MFS_OK, "plan D = 2.385: status %d", st);
   mfs_plan_free(pl);
   mfs_plan_free(NULL);
@@ -236,9 +239,9 @@ static void check_plan(void)
   /* a periodic box too small for the support */
   mfs_lattice_spec sp = {2, MFS_LATTICE_SQUARE, 4, 4, DX, 1.0, 1, MFS_CELLS_QUAD, 0.0, 0};
   mfs_particles *pp = mfs_lattice_alloc(&sp, &st);
-  mfs_quad *qp = mfs_quad_alloc(&r, pp, &st);
+  mfs_quad *qp = mfs_quad_alloc(&mfs_quad_nodal, pp, &st);
   ps.dilation = 2.385;
-  pl = mfs_plan_alloc(&ps, pp, qp, &st, &bad);
+  pl = mfs_plan_alloc(&ps, pp, qp, &st);
   CHECK(!pl && st == MFS_ETOOSMALL, "plan in a periodic box of 4 dx with a = 2.385 dx: status %d",
         st);
   mfs_quad_free(qp);
@@ -247,15 +250,18 @@ static void check_plan(void)
   /* a quadrature set of another dimension */
   mfs_lattice_spec s1 = {1, MFS_LATTICE_LINE, 9, 0, DX, 1.0, 0, MFS_CELLS_QUAD, 0.0, 0};
   mfs_particles *line = mfs_lattice_alloc(&s1, &st);
-  mfs_quad *q1 = mfs_quad_alloc(&r, line, &st);
-  pl = mfs_plan_alloc(&ps, p, q1, &st, &bad);
+  mfs_quad *q1 = mfs_quad_alloc(&mfs_quad_nodal, line, &st);
+  pl = mfs_plan_alloc(&ps, p, q1, &st);
   CHECK(!pl && st == MFS_EINVAL, "plan with a 1D quadrature on 2D particles: status %d", st);
 
   /* plane strain on a 1D plan */
-  mfs_plan *pl1 = mfs_plan_alloc(&ps, line, q1, &st, &bad);
+  mfs_plan *pl1 = mfs_plan_alloc(&ps, line, q1, &st);
+  if (pl1)
+    st = mfs_plan_tabulate(pl1, 1, &bad);
   CHECK(pl1 && st == MFS_OK, "1D plan: status %d", st);
   if (pl1) {
-    mfs_material mat = {MFS_PHYS_PLANE_STRAIN, 1.0, 1.5, 1.0};
+    mfs_material mat = {.physics = MFS_PHYS_PLANE_STRAIN, .modulus = 1.0, .poisson = 0.3,
+                        .density = 1.0};
     mfs_csr dummy, *K = &dummy; /* must be overwritten with NULL */
     st = mfs_assemble_stiffness(pl1, &mat, &K);
     CHECK(st == MFS_EINVAL && K == NULL, "plane strain stiffness on a 1D plan: status %d", st);
@@ -269,44 +275,46 @@ static void check_plan(void)
 
 static void check_stencil(void)
 {
-  mfs_stencil_spec s = {2,
-                        MFS_LATTICE_SQUARE,
-                        DX,
-                        1.0,
-                        "nodal", /* each node sees only itself within 0.9 dx */
-                        {&mfs_kernel_cubic, &mfs_shape_mls, 0.9, 1, 1e-12},
-                        {MFS_PHYS_SCALAR, 1.0, 0.0, 1.0},
-                        0};
+  mfs_disc s = mfs_disc_default();
+  s.dim = 2;
+  s.source = (mfs_source){.lattice = MFS_LATTICE_SQUARE, .spacing = DX, .gamma = 1.0};
+  s.quadrature = &mfs_quad_nodal; /* each node sees only itself within 0.9 dx */
+  s.dilation = 0.9;
   mfs_stencil_entry dummy, *e = &dummy; /* must be overwritten with NULL */
   size_t n = 77, bad = SIZE_MAX;
-  int st = mfs_stencil(&s, &e, &n, &bad);
+  mfs_status st = mfs_stencil(&s, &e, &n, &bad);
   CHECK(st == MFS_ESINGULAR && e == NULL && n == 0, "stencil D = 0.9: status %d", st);
   CHECK(bad != SIZE_MAX, "stencil D = 0.9: bad point not set");
   /* with 2 x 2 Gauss points each point sees three non-collinear nodes
    * within 0.9 dx, so that is regular; within 0.25 dx it sees none */
-  s.quadrature = "gauss2";
+  s.quadrature = &mfs_quad_gauss[1];
   st = mfs_stencil(&s, &e, &n, &bad);
   CHECK(st == MFS_OK, "stencil gauss2 D = 0.9: status %d", st);
   free(e);
-  s.plan.dilation = 0.25;
+  s.dilation = 0.25;
   st = mfs_stencil(&s, &e, &n, &bad);
   CHECK(st == MFS_ESINGULAR && e == NULL, "stencil gauss2 D = 0.25: status %d", st);
-  s.plan.dilation = 2.385;
-  s.quadrature = "gauss0";
+  s.dilation = 2.385;
+  s.quadrature = NULL;
   st = mfs_stencil(&s, &e, &n, &bad);
   CHECK(st == MFS_EINVAL && e == NULL, "stencil unknown rule: status %d", st);
-  s.quadrature = "stress-hex";
+  s.quadrature = &mfs_quad_stress_hex;
   st = mfs_stencil(&s, &e, &n, &bad);
   CHECK(st == MFS_EINVAL && e == NULL, "stencil stress-hex on a square lattice: status %d", st);
-  s.quadrature = "gauss2";
-  s.mat.kind = MFS_PHYS_PLANE_STRAIN;
+  s.quadrature = &mfs_quad_gauss[1];
+  s.material.physics = MFS_PHYS_PLANE_STRAIN;
   st = mfs_stencil(&s, &e, &n, &bad);
   CHECK(st == MFS_EINVAL && e == NULL, "stencil plane strain: status %d", st);
-  s.mat.kind = MFS_PHYS_SCALAR;
-  s.plan.dilation = 0.0;
+  s.material.physics = MFS_PHYS_SCALAR;
+  s.dilation = 0.0;
   st = mfs_stencil(&s, &e, &n, &bad);
   CHECK(st == MFS_EINVAL && e == NULL, "stencil dilation 0: status %d", st);
-  s.plan.dilation = 2.385;
+  s.dilation = 2.385;
+  s.source.nx = 10; /* not the infinite lattice */
+  s.source.lx = 10.0;
+  st = mfs_stencil(&s, &e, &n, &bad);
+  CHECK(st == MFS_EINVAL && e == NULL, "stencil of a finite box: status %d", st);
+  s.source.nx = 0;
   st = mfs_stencil(&s, &e, &n, &bad);
   CHECK(st == MFS_OK && e && n > 0, "stencil D = 2.385: status %d", st);
   free(e);

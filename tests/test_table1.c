@@ -24,17 +24,15 @@ int main(void)
 {
   for (int c = 0; c < 4; c++) {
     const char *rule = mfs_paper_table1_rules[c];
-    mfs_stencil_spec s = {.dim = 2,
-                          .lattice = MFS_LATTICE_SQUARE,
-                          .dx = 1.0,
-                          .gamma = 1.0,
-                          .quadrature = rule,
-                          .plan = {&mfs_kernel_cubic, &mfs_shape_mls, 2.0, 1, 1e-12},
-                          .mat = {MFS_PHYS_SCALAR, 1.0, 0.0, 1.0},
-                          .consistent_mass = 0};
+    mfs_disc s = mfs_disc_default();
+    s.dim = 2;
+    s.source = (mfs_source){.lattice = MFS_LATTICE_SQUARE, .spacing = 1.0, .gamma = 1.0};
+    s.quadrature = mfs_quad_find(rule);
+    s.kernel = &mfs_kernel_cubic;
+    s.dilation = 2.0;
     mfs_stencil_entry *e;
     size_t n, bad;
-    int st = mfs_stencil(&s, &e, &n, &bad);
+    mfs_status st = mfs_stencil(&s, &e, &n, &bad);
     CHECK(st == MFS_OK, "%s: mfs_stencil status %d", rule, st);
     if (st != MFS_OK)
       continue;

@@ -12,13 +12,12 @@ static const double RHO = 2000.0, E = 8e7; /* paper 001 section 4.1.1: c = 200 m
 
 static mfs_tsph_spec elastic(int n, int linear)
 {
-  mfs_tsph_spec s = {0};
-  s.n = n;
-  s.length = 1.0;
-  s.density = RHO;
-  s.modulus = E;
+  mfs_tsph_spec s = {.disc = mfs_disc_default()};
+  s.disc.source = (mfs_source){.lattice = MFS_LATTICE_LINE, .nx = n, .lx = 1.0};
+  s.disc.material.density = RHO;
+  s.disc.material.modulus = E;
   s.yield_stress = INFINITY;
-  s.dilation = 2.0;
+  s.disc.dilation = 2.0;
   s.scheme = MFS_TSPH_TAYLOR;
   s.linear_interpolation = linear;
   s.bc[0] = s.bc[1] = MFS_BC_FIXED;
@@ -32,7 +31,7 @@ static double pulse(double x)
 }
 
 /* max |v - exact| / max |v| after the pulse has moved by `shift` (m) */
-static double transport_error(int n, int linear, double cfl, double shift, int *status)
+static double transport_error(int n, int linear, double cfl, double shift, mfs_status *status)
 {
   mfs_tsph_spec sp = elastic(n, linear);
   mfs_tsph *s = mfs_tsph_alloc(&sp, status);
@@ -61,7 +60,7 @@ static double transport_error(int n, int linear, double cfl, double shift, int *
  * dt_stable, relative to the initial energy. */
 static double energy_ratio(mfs_tsph_spec sp, double f, int steps)
 {
-  int st;
+  mfs_status st;
   mfs_tsph *s = mfs_tsph_alloc(&sp, &st);
   if (!s)
     return NAN;
@@ -91,7 +90,7 @@ static double energy_ratio(mfs_tsph_spec sp, double f, int steps)
  * and the range after the reflection (5.8 to 7.3 ms), in units of 8e5 Pa. */
 static void bar_stress(double alpha, int linear, double *peak, double *lo, double *hi)
 {
-  int st;
+  mfs_status st;
   mfs_tsph_spec sp = elastic(50, linear);
   sp.bc[0] = MFS_BC_VELOCITY;
   sp.bc_velocity[0] = 1.0;
@@ -116,7 +115,7 @@ static void bar_stress(double alpha, int linear, double *peak, double *lo, doubl
 
 int main(void)
 {
-  int st;
+  mfs_status st;
   /* Richtmyer's two-step Lax-Wendroff shifts the grid function by exactly one
    * particle per step at c dt = dx (both interpolations: the pulse stays away
    * from the ends, where they differ) */
@@ -214,7 +213,7 @@ int main(void)
     sp = elastic(101, 0);
     sp.scheme = run[i].scheme;
     sp.viscosity = run[i].alpha;
-    sp.dilation = run[i].D;
+    sp.disc.dilation = run[i].D;
     double below = energy_ratio(sp, 0.9, 3000), above = energy_ratio(sp, 1.03, 3000);
     CHECK(below <= 1.0 + 1e-9 && above > 10.0,
           "%s, alpha %g, D %g: energy ratio %.3g at 0.9 dt_stable (<= 1), %.3g at 1.03 (> 10)",
@@ -242,10 +241,10 @@ int main(void)
   sp = elastic(2, 0);
   CHECK(mfs_tsph_alloc(&sp, &st) == NULL && st == MFS_EINVAL, "n = 2: status %d", st);
   sp = elastic(50, 0);
-  sp.density = -1.0;
+  sp.disc.material.density = -1.0;
   CHECK(mfs_tsph_alloc(&sp, &st) == NULL && st == MFS_EINVAL, "negative density: status %d", st);
   sp = elastic(50, 0);
-  sp.dilation = 0.5;
+  sp.disc.dilation = 0.5;
   CHECK(mfs_tsph_alloc(&sp, &st) == NULL && st == MFS_ESINGULAR, "support without neighbours: status %d", st);
   sp = elastic(50, 0);
   s = mfs_tsph_alloc(&sp, &st);

@@ -2,8 +2,8 @@
 
 #include <errno.h>
 #include <fcntl.h>
-#include <signal.h>
 #include <math.h>
+#include <signal.h>
 #include <stdarg.h>
 #include <stdlib.h>
 #include <string.h>
@@ -29,199 +29,457 @@ _Noreturn void cli_die(int code, const char *fmt, ...)
   exit(code);
 }
 
+/* ---- numbers ---- */
+
+int cli_parse_double(const char *s, double *v)
+{
+  /* decimal only: [+-]digits[.digits][(e|E)[+-]digits] */
+  const char *c = s;
+  if (*c == '+' || *c == '-')
+    c++;
+  int digits = 0;
+  while (*c >= '0' && *c <= '9')
+    c++, digits++;
+  if (*c == '.') {
+    c++;
+    while (*c >= '0' && *c <= '9')
+      c++, digits++;
+  }
+  if (!digits)
+    return 0;
+  if (*c == 'e' || *c == 'E') {
+    c++;
+    if (*c == '+' || *c == '-')
+      c++;
+    if (!(*c >= '0' && *c <= '9'))
+      return 0;
+    while (*c >= '0' && *c <= '9')
+      c++;
+  }
+  if (*c != '\0')
+    return 0;
+  errno = 0;
+  char *end;
+  double x = strtod(s, &end);
+  if (*end != '\0' || !isfinite(x)) /* overflow; an underflow to a subnormal is fine */
+    return 0;
+  *v = x;
+  return 1;
+}
+
+int cli_parse_long(const char *s, long *v)
+{
+  const char *c = s;
+  if (*c == '+' || *c == '-')
+    c++;
+  if (!(*c >= '0' && *c <= '9'))
+    return 0;
+  while (*c >= '0' && *c <= '9')
+    c++;
+  if (*c != '\0')
+    return 0;
+  errno = 0;
+  long x = strtol(s, NULL, 10);
+  if (errno == ERANGE)
+    return 0;
+  *v = x;
+  return 1;
+}
+
 double cli_double(const char *opt, const char *val)
 {
-  char *end;
-  errno = 0;
-  double v = strtod(val, &end);
-  if (end == val || *end != '\0' || errno == ERANGE || !isfinite(v))
+  double v;
+  if (!cli_parse_double(val, &v))
     cli_die(2, "%s '%s': not a number; expected a finite decimal number", opt, val);
   return v;
 }
 
 long cli_long(const char *opt, const char *val, long lo, long hi)
 {
-  char *end;
-  errno = 0;
-  long v = strtol(val, &end, 10);
-  if (end == val || *end != '\0' || errno == ERANGE)
-    cli_die(2, "%s '%s': not an integer", opt, val);
+  long v;
+  if (!cli_parse_long(val, &v))
+    cli_die(2, "%s '%s': not an integer; allowed %ld to %ld", opt, val, lo, hi);
   if (v < lo || v > hi)
     cli_die(2, "%s %ld: out of range; allowed %ld to %ld", opt, v, lo, hi);
   return v;
 }
 
-size_t cli_double_list(const char *opt, const char *val, double **out)
+/* ---- option tables ---- */
+
+static size_t group_len(const cli_group *g)
 {
-  size_t n = 1;
-  for (const char *c = val; *c; c++)
-    n += *c == ',';
-  double *v = malloc(n * sizeof *v);
-  char *copy = strdup(val);
-  if (!v || !copy)
-    cli_die(1, "out of memory");
-  size_t k = 0;
-  char *s = copy;
-  for (;;) {
-    char *comma = strchr(s, ',');
-    if (comma)
-      *comma = '\0';
-    if (*s == '\0')
-      cli_die(2, "%s '%s': empty list element; expected comma-separated numbers", opt, val);
-    char *end;
-    errno = 0;
-    v[k] = strtod(s, &end);
-    if (*end != '\0' || errno == ERANGE || !isfinite(v[k]))
-      cli_die(2, "%s '%s': '%s' is not a number; expected comma-separated numbers", opt, val, s);
-    k++;
-    if (!comma)
-      break;
-    s = comma + 1;
-  }
-  free(copy);
-  *out = v;
-  return k;
+  size_t n = 0;
+  while (g->opt[n].type != CLI_END)
+    n++;
+  return n;
 }
+
+/* "> 0", ">= 0 and < 1": the bounds of an option, for messages. */
+static void bounds_text(const cli_opt *o, char *buf, size_t len)
+{
+  char a[64] = "", b[64] = "";
+  if (o->bounds & (CLI_GT | CLI_GE))
+    snprintf(a, sizeof a, "%s %g", (o->bounds & CLI_GT) ? ">" : ">=", o->lo);
+  if (o->bounds & (CLI_LT | CLI_LE))
+    snprintf(b, sizeof b, "%s %g", (o->bounds & CLI_LT) ? "<" : "<=", o->hi);
+  snprintf(buf, len, "must be %s%s%s", a, a[0] && b[0] ? " and " : "", b);
+}
+
+static int in_bounds(const cli_opt *o, double v)
+{
+  if ((o->bounds & CLI_GT) && !(v > o->lo))
+    return 0;
+  if ((o->bounds & CLI_GE) && !(v >= o->lo))
+    return 0;
+  if ((o->bounds & CLI_LT) && !(v < o->hi))
+    return 0;
+  if ((o->bounds & CLI_LE) && !(v <= o->hi))
+    return 0;
+  return 1;
+}
+
+static void check_bounds(const cli_opt *o, const char *val, double v)
+{
+  if (!in_bounds(o, v)) {
+    char b[160];
+    bounds_text(o, b, sizeof b);
+    cli_die(2, "%s %s: out of range; %s", o->name, val, b);
+  }
+}
+
+static void set_value(const cli_opt *o, void *base, const char *val)
+{
+  char *at = (char *)base + o->offset;
+  switch (o->type) {
+  case CLI_FLAG:
+    *(int *)at = 1;
+    break;
+  case CLI_INT: {
+    long v;
+    if (!cli_parse_long(val, &v))
+      cli_die(2, "%s '%s': not an integer", o->name, val);
+    check_bounds(o, val, (double)v);
+    *(long *)at = v;
+    break;
+  }
+  case CLI_REAL: {
+    double v;
+    if (!cli_parse_double(val, &v))
+      cli_die(2, "%s '%s': not a number; expected a finite decimal number", o->name, val);
+    check_bounds(o, val, v);
+    *(double *)at = v;
+    break;
+  }
+  case CLI_REALS: {
+    cli_list *l = (cli_list *)at;
+    size_t n = 1;
+    for (const char *c = val; *c; c++)
+      n += *c == ',';
+    double *v = malloc(n * sizeof *v);
+    char *copy = strdup(val);
+    if (!v || !copy)
+      cli_die(1, "out of memory");
+    size_t k = 0;
+    for (char *s = copy;;) {
+      char *comma = strchr(s, ',');
+      if (comma)
+        *comma = '\0';
+      if (*s == '\0')
+        cli_die(2, "%s '%s': empty list element; expected comma-separated numbers", o->name, val);
+      if (!cli_parse_double(s, &v[k]))
+        cli_die(2, "%s '%s': '%s' is not a number; expected comma-separated numbers", o->name, val,
+                s);
+      if (!in_bounds(o, v[k])) {
+        char b[160];
+        bounds_text(o, b, sizeof b);
+        cli_die(2, "%s %s: %s out of range; every value %s", o->name, val, s, b + 5);
+      }
+      k++;
+      if (!comma)
+        break;
+      s = comma + 1;
+    }
+    free(copy);
+    free(l->v);
+    l->v = v;
+    l->n = k;
+    break;
+  }
+  case CLI_CHOICE:
+    for (int k = 0; o->choices[k]; k++)
+      if (strcmp(val, o->choices[k]) == 0) {
+        *(int *)at = k;
+        return;
+      }
+    {
+      char names[512] = "";
+      for (int k = 0; o->choices[k]; k++) {
+        if (k)
+          strncat(names, ", ", sizeof names - strlen(names) - 1);
+        strncat(names, o->choices[k], sizeof names - strlen(names) - 1);
+      }
+      cli_die(2, "%s '%s': not allowed; allowed: %s", o->name, val, names);
+    }
+  case CLI_TABLE: {
+    const void *t = o->find(val);
+    if (!t)
+      cli_die(2, "%s '%s': unknown; allowed: %s", o->name, val, o->allowed);
+    *(const void **)at = t;
+    break;
+  }
+  case CLI_TEXT:
+    *(const char **)at = val;
+    break;
+  case CLI_TEXTS: {
+    cli_texts *t = (cli_texts *)at;
+    if (t->n == CLI_MAX_TEXTS)
+      cli_die(2, "%s: given more than %d times", o->name, CLI_MAX_TEXTS);
+    t->v[t->n++] = val;
+    break;
+  }
+  case CLI_END:
+    break;
+  }
+}
+
+static const cli_opt *find_opt(cli_group *groups, size_t ngroups, const char *name, cli_group **g,
+                               size_t *k)
+{
+  for (size_t i = 0; i < ngroups; i++)
+    for (size_t j = 0; groups[i].opt[j].type != CLI_END; j++) {
+      const char *n = groups[i].opt[j].name;
+      if (name ? (n && strcmp(n, name) == 0) : n == NULL) {
+        *g = &groups[i];
+        *k = j;
+        return &groups[i].opt[j];
+      }
+    }
+  return NULL;
+}
+
+static void print_opt(FILE *f, const cli_opt *o)
+{
+  char left[96];
+  if (o->type == CLI_FLAG)
+    snprintf(left, sizeof left, "  %s", o->name);
+  else
+    snprintf(left, sizeof left, "  %s %s", o->name, o->arg ? o->arg : "VALUE");
+  const char *h = o->help ? o->help : "";
+  if (strlen(left) >= 26)
+    fprintf(f, "%s\n%26s", left, "");
+  else
+    fprintf(f, "%-26s", left);
+  for (const char *c = h; *c; c++) {
+    fputc(*c, f);
+    if (*c == '\n' && c[1])
+      fprintf(f, "%26s", "");
+  }
+  fputc('\n', f);
+}
+
+void cli_print_help(FILE *f, const char *usage, const char *about, const cli_group *groups,
+                    size_t ngroups)
+{
+  fprintf(f, "usage: %s\n%s", usage, about);
+  fputs("options:\n", f);
+  for (size_t i = 0; i < ngroups; i++)
+    for (size_t j = 0; groups[i].opt[j].type != CLI_END; j++)
+      if (groups[i].opt[j].name)
+        print_opt(f, &groups[i].opt[j]);
+  fputs("  -h, --help              this text\n", f);
+}
+
+void cli_parse(int argc, char **argv, const char *usage, const char *about, cli_group *groups,
+               size_t ngroups)
+{
+  for (size_t i = 0; i < ngroups; i++)
+    memset(groups[i].seen, 0, group_len(&groups[i]));
+  for (int i = 1; i < argc; i++) {
+    const char *a = argv[i], *val = NULL;
+    if (strcmp(a, "--help") == 0 || strcmp(a, "-h") == 0) {
+      cli_print_help(stdout, usage, about, groups, ngroups);
+      exit(0);
+    }
+    cli_group *g;
+    size_t k;
+    const cli_opt *o;
+    if (a[0] != '-' || a[1] == '\0' || (a[1] >= '0' && a[1] <= '9') || a[1] == '.') {
+      o = find_opt(groups, ngroups, NULL, &g, &k); /* a positional argument */
+      if (!o)
+        cli_die(2, "'%s': unexpected argument; see 'mfstab %s --help'", a, cli_command);
+      if (g->seen[k])
+        cli_die(2, "'%s': only one %s is allowed", a, o->arg ? o->arg : "argument");
+      set_value(o, g->base, a);
+      g->seen[k]++;
+      continue;
+    }
+    char name[128];
+    const char *eq = a[1] == '-' ? strchr(a, '=') : NULL;
+    if (eq) {
+      size_t n = (size_t)(eq - a);
+      if (n >= sizeof name)
+        cli_die(2, "%.40s...: unknown option; see 'mfstab %s --help'", a, cli_command);
+      memcpy(name, a, n);
+      name[n] = '\0';
+      val = eq + 1;
+    } else {
+      snprintf(name, sizeof name, "%s", a);
+    }
+    o = find_opt(groups, ngroups, name, &g, &k);
+    if (!o)
+      cli_die(2, "%s: unknown option; see 'mfstab %s --help'", name, cli_command);
+    if (o->type == CLI_FLAG) {
+      if (val)
+        cli_die(2, "%s: a flag takes no value (got '%s'); give %s alone", name, val, name);
+    } else if (!val) {
+      if (i + 1 >= argc)
+        cli_die(2, "%s: missing value (%s)", name, o->arg ? o->arg : "VALUE");
+      val = argv[++i];
+    }
+    if (g->seen[k] && o->type != CLI_TEXTS && o->type != CLI_REALS)
+      cli_die(2, "%s: given twice", name);
+    set_value(o, g->base, val);
+    if (g->seen[k] < 255)
+      g->seen[k]++;
+  }
+}
+
+int cli_seen(const cli_group *g, const char *name)
+{
+  for (size_t j = 0; g->opt[j].type != CLI_END; j++)
+    if (g->opt[j].name && strcmp(g->opt[j].name, name) == 0)
+      return g->seen[j];
+  return 0;
+}
+
+/* ---- discretization options ---- */
+
+static const char *const lattice_names[] = {"line", "square", "hex", NULL};
+static const char *const mass_names[] = {"lumped", "consistent", NULL};
+static const char *const physics_names[] = {"antiplane", "plane-strain", NULL};
+
+static const void *find_kernel(const char *n)
+{
+  return mfs_kernel_find(n);
+}
+static const void *find_shape(const char *n)
+{
+  return mfs_shape_find(n);
+}
+static const void *find_quad(const char *n)
+{
+  return mfs_quad_find(n);
+}
+
+#define DOFF(f) offsetof(cli_disc, f)
+const cli_opt cli_disc_opts[] = {
+  {.name = "--dim", .type = CLI_INT, .arg = "1|2", .help = "dimension (default 1)",
+   .offset = DOFF(dim), .bounds = CLI_GE | CLI_LE, .lo = 1, .hi = 2},
+  {.name = "--lattice", .type = CLI_CHOICE, .arg = "line|square|hex",
+   .help = "particle lattice (default line in 1D, square in 2D)", .offset = DOFF(lattice),
+   .choices = lattice_names},
+  {.name = "--kernel", .type = CLI_TABLE, .arg = "NAME",
+   .help = "cubic (default), quartic, wendland2, quintic", .offset = DOFF(kernel),
+   .find = find_kernel, .allowed = "cubic, quartic, wendland2, quintic"},
+  {.name = "--dilation", .type = CLI_REALS, .arg = "D",
+   .help = "support radius a = D*dx (default 2)", .offset = DOFF(dilation),
+   .bounds = CLI_GT | CLI_LE, .lo = 0, .hi = 1e4},
+  {.name = "--shape", .type = CLI_TABLE, .arg = "NAME",
+   .help = "mls (default), sph, shepard, kb, rl", .offset = DOFF(shape), .find = find_shape,
+   .allowed = "sph, shepard, mls, kb, rl"},
+  {.name = "--quadrature", .type = CLI_TABLE, .arg = "RULE",
+   .help = "nodal (default), stress (1D), stress-quad, stress-tri,\n"
+           "stress-star, stress-hex, gauss1, gauss2, .. gauss10",
+   .offset = DOFF(quadrature), .find = find_quad,
+   .allowed = "nodal, stress, stress-quad, stress-tri, stress-star, stress-hex, gauss1 .. gauss10"},
+  {.name = "--mass", .type = CLI_CHOICE, .arg = "lumped|consistent",
+   .help = "mass matrix (default lumped, row sum)", .offset = DOFF(mass), .choices = mass_names},
+  {.name = "--modulus", .type = CLI_REAL, .arg = "C",
+   .help = "tangent modulus (E in 1D, shear modulus in 2D; default 1)", .offset = DOFF(modulus),
+   .bounds = CLI_GT, .lo = 0},
+  {.name = "--density", .type = CLI_REAL, .arg = "RHO", .help = "density (default 1)",
+   .offset = DOFF(density), .bounds = CLI_GT, .lo = 0},
+  {.name = "--spacing", .type = CLI_REAL, .arg = "DX", .help = "particle spacing (default 1)",
+   .offset = DOFF(spacing), .bounds = CLI_GT, .lo = 0},
+  {.name = "--gamma", .type = CLI_REAL, .arg = "G", .help = "dy/dx of the square lattice (default 1)",
+   .offset = DOFF(gamma), .bounds = CLI_GT, .lo = 0},
+  {.type = CLI_END}};
+
+const cli_opt cli_physics_opts[] = {
+  {.name = "--physics", .type = CLI_CHOICE, .arg = "antiplane|plane-strain",
+   .help = "2D problem (default antiplane)", .offset = DOFF(physics), .choices = physics_names},
+  {.name = "--poisson", .type = CLI_REAL, .arg = "NU",
+   .help = "Poisson ratio of plane strain (default 0.25)", .offset = DOFF(poisson),
+   .bounds = CLI_GT | CLI_LT, .lo = -1, .hi = 0.5},
+  {.type = CLI_END}};
+#undef DOFF
+
+_Static_assert(sizeof cli_disc_opts / sizeof cli_disc_opts[0] == CLI_DISC_NOPTS,
+               "CLI_DISC_NOPTS");
+_Static_assert(sizeof cli_physics_opts / sizeof cli_physics_opts[0] == CLI_PHYSICS_NOPTS,
+               "CLI_PHYSICS_NOPTS");
 
 void cli_disc_defaults(cli_disc *d)
 {
   *d = (cli_disc){.dim = 1,
-                  .lattice = NULL,
+                  .lattice = -1,
                   .kernel = &mfs_kernel_cubic,
-                  .dilation = 2.0,
+                  .dilation = {0, NULL},
                   .shape = &mfs_shape_mls,
-                  .quadrature = "nodal",
-                  .consistent_mass = 0,
+                  .quadrature = &mfs_quad_nodal,
+                  .mass = 0,
                   .modulus = 1.0,
                   .density = 1.0,
                   .spacing = 1.0,
-                  .gamma = 1.0};
+                  .gamma = 1.0,
+                  .physics = 0,
+                  .poisson = 0.25};
 }
 
-static void list_names(char *buf, size_t len, const char *const *names, size_t n)
+mfs_disc cli_disc_build(const cli_disc *o, const unsigned char *seen)
 {
-  buf[0] = '\0';
-  for (size_t i = 0; i < n; i++) {
-    strncat(buf, names[i], len - strlen(buf) - 1);
-    if (i + 1 < n)
-      strncat(buf, ", ", len - strlen(buf) - 1);
-  }
-}
-
-int cli_disc_option(cli_disc *d, const char *opt, const char *val)
-{
-  char names[256];
-  if (strcmp(opt, "--dim") == 0) {
-    d->dim = (int)cli_long(opt, val, 1, 2);
-  } else if (strcmp(opt, "--lattice") == 0) {
-    if (strcmp(val, "line") && strcmp(val, "square") && strcmp(val, "hex"))
-      cli_die(2, "--lattice '%s': unknown lattice; allowed: line, square, hex", val);
-    d->lattice = val;
-  } else if (strcmp(opt, "--kernel") == 0) {
-    d->kernel = mfs_kernel_find(val);
-    if (!d->kernel) {
-      const char *n[8];
-      size_t k = 0;
-      for (; mfs_kernel_types[k]; k++)
-        n[k] = mfs_kernel_types[k]->name;
-      list_names(names, sizeof names, n, k);
-      cli_die(2, "--kernel '%s': unknown kernel; allowed: %s", val, names);
-    }
-  } else if (strcmp(opt, "--dilation") == 0) {
-    d->dilation = cli_double(opt, val);
-    if (!(d->dilation > 0.0))
-      cli_die(2, "--dilation %s: must be > 0", val);
-  } else if (strcmp(opt, "--shape") == 0) {
-    d->shape = mfs_shape_find(val);
-    if (!d->shape) {
-      const char *n[8];
-      size_t k = 0;
-      for (; mfs_shape_types[k]; k++)
-        n[k] = mfs_shape_types[k]->name;
-      list_names(names, sizeof names, n, k);
-      cli_die(2, "--shape '%s': unknown shape function; allowed: %s", val, names);
-    }
-  } else if (strcmp(opt, "--quadrature") == 0) {
-    mfs_quad_rule r;
-    if (mfs_quad_rule_parse(val, &r) != MFS_OK)
-      cli_die(2,
-              "--quadrature '%s': unknown rule; allowed: nodal, stress, stress-quad, stress-tri, "
-              "stress-star, stress-hex, gauss1 .. gauss10",
-              val);
-    d->quadrature = val;
-  } else if (strcmp(opt, "--mass") == 0) {
-    if (strcmp(val, "lumped") == 0)
-      d->consistent_mass = 0;
-    else if (strcmp(val, "consistent") == 0)
-      d->consistent_mass = 1;
-    else
-      cli_die(2, "--mass '%s': allowed: lumped, consistent", val);
-  } else if (strcmp(opt, "--modulus") == 0) {
-    d->modulus = cli_double(opt, val);
-    if (!(d->modulus > 0.0))
-      cli_die(2, "--modulus %s: must be > 0", val);
-  } else if (strcmp(opt, "--density") == 0) {
-    d->density = cli_double(opt, val);
-    if (!(d->density > 0.0))
-      cli_die(2, "--density %s: must be > 0", val);
-  } else if (strcmp(opt, "--spacing") == 0) {
-    d->spacing = cli_double(opt, val);
-    if (!(d->spacing > 0.0))
-      cli_die(2, "--spacing %s: must be > 0", val);
-  } else if (strcmp(opt, "--gamma") == 0) {
-    d->gamma = cli_double(opt, val);
-    if (!(d->gamma > 0.0))
-      cli_die(2, "--gamma %s: must be > 0", val);
-  } else {
-    return 0;
-  }
-  return 1;
-}
-
-void cli_disc_finish(cli_disc *d, mfs_lattice_kind *lattice, mfs_quad_rule *rule)
-{
-  const char *lat = d->lattice ? d->lattice : (d->dim == 1 ? "line" : "square");
-  if (d->dim == 1 && strcmp(lat, "line"))
-    cli_die(2, "--lattice %s: not a 1D lattice; with --dim 1 allowed: line", lat);
-  if (d->dim == 2 && strcmp(lat, "line") == 0)
+  (void)seen;
+  int dim = (int)o->dim;
+  int lat = o->lattice >= 0 ? o->lattice : (dim == 1 ? MFS_LATTICE_LINE : MFS_LATTICE_SQUARE);
+  if (dim == 1 && lat != MFS_LATTICE_LINE)
+    cli_die(2, "--lattice %s: not a 1D lattice; with --dim 1 allowed: line", lattice_names[lat]);
+  if (dim == 2 && lat == MFS_LATTICE_LINE)
     cli_die(2, "--lattice line: not a 2D lattice; with --dim 2 allowed: square, hex");
-  *lattice = strcmp(lat, "line") == 0 ? MFS_LATTICE_LINE
-             : strcmp(lat, "hex") == 0 ? MFS_LATTICE_HEX
-                                       : MFS_LATTICE_SQUARE;
-  mfs_quad_rule_parse(d->quadrature, rule);
-  if (mfs_quad_rule_check(rule, d->dim, *lattice) != MFS_OK) {
-    const char *allowed = d->dim == 1 ? "nodal, stress, gaussN"
-                          : *lattice == MFS_LATTICE_HEX
+  if (!mfs_quad_applies(o->quadrature, dim, (mfs_lattice_kind)lat)) {
+    const char *allowed = dim == 1 ? "nodal, stress, gaussN"
+                          : lat == MFS_LATTICE_HEX
                             ? "nodal, stress-hex, gaussN"
                             : "nodal, stress-quad, stress-tri, stress-star, gaussN";
     cli_die(2, "--quadrature %s: not defined for --dim %d --lattice %s; allowed: %s",
-            d->quadrature, d->dim, lat, allowed);
+            o->quadrature->name, dim, lattice_names[lat], allowed);
   }
+  if (o->physics == 1 && dim != 2)
+    cli_die(2, "--physics plane-strain needs --dim 2");
+  mfs_disc d = mfs_disc_default();
+  d.dim = dim;
+  d.source = (mfs_source){.lattice = (mfs_lattice_kind)lat, .spacing = o->spacing, .gamma = o->gamma};
+  d.kernel = o->kernel;
+  d.dilation = o->dilation.n ? o->dilation.v[0] : 2.0;
+  d.shape = o->shape;
+  d.quadrature = o->quadrature;
+  d.consistent_mass = o->mass == 1;
+  d.material = (mfs_material){.physics = o->physics == 1 ? MFS_PHYS_PLANE_STRAIN : MFS_PHYS_SCALAR,
+                              .modulus = o->modulus,
+                              .poisson = o->poisson,
+                              .density = o->density};
+  return d;
 }
 
-const char cli_disc_help[] =
-  "  --dim 1|2               dimension (default 1)\n"
-  "  --lattice line|square|hex   particle lattice (default line in 1D, square in 2D)\n"
-  "  --kernel NAME           cubic (default), quartic, wendland2, quintic\n"
-  "  --dilation D            support radius a = D*dx (default 2)\n"
-  "  --shape NAME            mls (default), sph, shepard, kb, rl\n"
-  "  --quadrature RULE       nodal (default), stress (1D), stress-quad, stress-tri,\n"
-  "                          stress-star, stress-hex, gauss1, gauss2, gaussN\n"
-  "  --mass lumped|consistent    mass matrix (default lumped, row sum)\n"
-  "  --modulus C             tangent modulus (E in 1D, shear modulus in 2D; default 1)\n"
-  "  --density RHO           density (default 1)\n"
-  "  --spacing DX            particle spacing (default 1)\n"
-  "  --gamma G               dy/dx of the square lattice (default 1)\n";
-
-_Noreturn void cli_die_status(int status, const cli_disc *d, const char *what)
+_Noreturn void cli_die_status(mfs_status status, const cli_disc *d, double dilation,
+                              const char *what)
 {
   if (status == MFS_ESINGULAR)
     cli_die(2,
             "--dilation %g: too small for the %s moment matrix with kernel %s (singular %s); "
             "use a larger dilation",
-            d->dilation, d->shape->name, d->kernel->name, what);
+            dilation, d->shape->name, d->kernel->name, what);
   if (status == MFS_ETOOSMALL)
-    cli_die(2, "model too small for --dilation %g: %s", d->dilation, what);
+    cli_die(2, "model too small for --dilation %g: %s", dilation, what);
   if (status == MFS_EINVAL)
     cli_die(2, "invalid combination of options: %s", what);
   cli_die(1, "%s: %s", what, mfs_strerror(status));
@@ -439,4 +697,15 @@ void cli_fmt(char *buf, size_t len, double v)
     snprintf(buf, len, "0");
   else
     snprintf(buf, len, "%.16g", v);
+}
+
+void cli_put_num(FILE *f, double v, const char *what)
+{
+  if (isnan(v))
+    return; /* an undefined value: an empty field */
+  if (!isfinite(v))
+    cli_die(1, "%s is not finite (%g); no output written", what, v);
+  char b[40];
+  cli_fmt(b, sizeof b, v);
+  fputs(b, f);
 }

@@ -1,9 +1,12 @@
-/* Command-line helpers of the mfstab program: strict parsing with one-line
- * errors (exit 2), the discretization options shared by the commands, and
- * CSV output written to a temporary file and renamed on success. */
+/* Command-line helpers of the mfstab program: declarative option tables
+ * (one per command, the discretization options defined once) from which
+ * parsing, one-line errors (exit 2) and --help come; strict numbers; the
+ * discretization descriptor built from the options; CSV output written to a
+ * temporary file and renamed on success. */
 #ifndef MFSTAB_CLI_H
 #define MFSTAB_CLI_H
 
+#include <stddef.h>
 #include <stdio.h>
 
 #include "mfstab.h"
@@ -14,38 +17,116 @@ extern const char *cli_command;
 /* Print "mfstab CMD: MESSAGE" on stderr and exit with code. */
 _Noreturn void cli_die(int code, const char *fmt, ...);
 
-/* Strict conversions: the whole string must be a finite number / an integer. */
+/* Strict conversions: the whole string a finite decimal number (no hex, no
+ * leading or trailing space, no inf/nan), an integer in [lo, hi]; 1 on
+ * success.  The cli_* forms die with a message naming opt. */
+int cli_parse_double(const char *s, double *v);
+int cli_parse_long(const char *s, long *v);
 double cli_double(const char *opt, const char *val);
 long cli_long(const char *opt, const char *val, long lo, long hi);
-/* Comma-separated list of numbers; returns the count, *out malloc'ed. */
-size_t cli_double_list(const char *opt, const char *val, double **out);
 
-/* Options that describe a discretization. */
+/* ---- option tables -------------------------------------------------- */
+
+typedef enum {
+  CLI_FLAG,   /* int: 1 when given; takes no value */
+  CLI_INT,    /* long */
+  CLI_REAL,   /* double */
+  CLI_REALS,  /* cli_list: comma-separated numbers */
+  CLI_CHOICE, /* int: the index of the value in .choices */
+  CLI_TABLE,  /* const void *: the variant table called so (.find) */
+  CLI_TEXT,   /* const char * */
+  CLI_TEXTS,  /* cli_texts: a repeatable option */
+  CLI_END
+} cli_type;
+
+/* Bounds of numbers: lo < v (CLI_GT) or lo <= v (CLI_GE), v < hi or v <= hi. */
+enum { CLI_GT = 1, CLI_GE = 2, CLI_LT = 4, CLI_LE = 8 };
+
 typedef struct {
-  int dim;
-  const char *lattice;
+  size_t n;
+  double *v; /* malloc'ed */
+} cli_list;
+
+#define CLI_MAX_TEXTS 256
+typedef struct {
+  int n;
+  const char *v[CLI_MAX_TEXTS];
+} cli_texts;
+
+typedef struct {
+  const char *name;     /* "--dilation"; NULL: the positional argument */
+  cli_type type;
+  const char *arg;      /* the value's name in --help ("D") */
+  const char *help;     /* lines after the first are indented */
+  size_t offset;        /* of the value in the group's struct */
+  unsigned bounds;      /* CLI_GT | CLI_LE ... (numbers) */
+  double lo, hi;
+  const char *const *choices;            /* CLI_CHOICE: NULL-terminated */
+  const void *(*find)(const char *name); /* CLI_TABLE: the table, or NULL */
+  const char *allowed;                   /* CLI_TABLE: the names, for messages */
+} cli_opt;
+
+/* A table of options (ended by an entry of type CLI_END) filling the struct
+ * at base; seen (one byte per entry) counts how often each was given. */
+typedef struct {
+  const cli_opt *opt;
+  void *base;
+  unsigned char *seen;
+} cli_group;
+
+/* Parse argv[1..argc) against the groups.  --help / -h prints the usage
+ * line, the description and every option's help on stdout and exits 0;
+ * every error is one line, exit 2. */
+void cli_parse(int argc, char **argv, const char *usage, const char *about, cli_group *groups,
+               size_t ngroups);
+
+/* The help text of a command (for `mfstab help CMD`). */
+void cli_print_help(FILE *f, const char *usage, const char *about, const cli_group *groups,
+                    size_t ngroups);
+
+/* The entry of group g for option name (must exist), and whether it was given. */
+int cli_seen(const cli_group *g, const char *name);
+
+/* ---- the discretization options, shared by the commands ---------------- */
+
+typedef struct {
+  long dim;
+  int lattice;                     /* CLI_CHOICE: line, square, hex */
   const mfs_kernel_type *kernel;
-  double dilation;
+  cli_list dilation;               /* one value, or a list where a command takes one */
   const mfs_shape_type *shape;
-  const char *quadrature;
-  int consistent_mass;
+  const mfs_quad_type *quadrature;
+  int mass;                        /* lumped, consistent */
   double modulus, density, spacing, gamma;
-  int seen_lattice;
+  int physics;                     /* antiplane (scalar), plane-strain */
+  double poisson;
 } cli_disc;
 
+extern const cli_opt cli_disc_opts[];     /* --dim .. --gamma */
+extern const cli_opt cli_physics_opts[];  /* --physics, --poisson */
+#define CLI_DISC_NOPTS 12                 /* entries of cli_disc_opts, CLI_END included */
+#define CLI_PHYSICS_NOPTS 3
+
+/* The defaults (1D, cubic, D = 2, mls, nodal, lumped, unit modulus,
+ * density and spacing, gamma 1, anti-plane, nu = 0.25). */
 void cli_disc_defaults(cli_disc *d);
-/* Consume option opt with value val if it is a discretization option: 1 if
- * consumed, 0 if not ours.  Exits with code 2 on a bad value. */
-int cli_disc_option(cli_disc *d, const char *opt, const char *val);
-/* Cross-option checks after parsing (lattice vs dim, quadrature vs lattice). */
-void cli_disc_finish(cli_disc *d, mfs_lattice_kind *lattice, mfs_quad_rule *rule);
-/* Help text for the discretization options. */
-extern const char cli_disc_help[];
 
-/* Die with the right message and code for a library status. */
-_Noreturn void cli_die_status(int status, const cli_disc *d, const char *what);
+/* The descriptor of the options, once parsed (an infinite lattice source of
+ * the given spacing and gamma; commands with finite models set their own
+ * source), dilation: its first value.  Cross-option checks (lattice and
+ * dimension, quadrature and lattice, plane strain in 2D) die with one line. */
+mfs_disc cli_disc_build(const cli_disc *o, const unsigned char *seen_disc);
 
-/* CSV output: path NULL or "-" is stdout. */
+/* Die with the right message and code for a library status met while
+ * building the discretization of o (what: where it happened). */
+_Noreturn void cli_die_status(mfs_status status, const cli_disc *o, double dilation,
+                              const char *what);
+
+/* ---- output -------------------------------------------------------- */
+
+/* CSV output: path NULL or "-" is stdout.  A regular file or a new path is
+ * written through a temporary file renamed on success; a symlink is
+ * followed; a device or FIFO is written in place. */
 typedef struct {
   FILE *f;
   char *path, *tmp;
@@ -56,5 +137,9 @@ void cli_out_abort(cli_out *o);   /* close and remove the temporary file */
 
 /* Format a double with 16 significant digits, "0" for zero. */
 void cli_fmt(char *buf, size_t len, double v);
+
+/* One CSV number field: the value, or an empty field for NAN (undefined);
+ * dies (exit 1, one line naming `what`) rather than write an infinity. */
+void cli_put_num(FILE *f, double v, const char *what);
 
 #endif

@@ -10,8 +10,8 @@
 #include "commands.h"
 #include "eigs_figures.h"
 
-static const char help[] =
-  "usage: mfstab bound [options] [-o FILE]\n"
+static const char usage[] = "mfstab bound [options] [-o FILE]";
+static const char about[] =
   "Element eigenvalue bound lambda_max <= max_Q lambda^Q of a finite model with lumped mass\n"
   "(paper 003 eqs 121-133; 2D: the exact largest eigenvalue of the 2 x 2 matrix\n"
   "c^2 sum_I g_I g_I^T / phi_I, eqs 139-144 without assuming eq. 141), streamed over the\n"
@@ -26,50 +26,43 @@ static const char help[] =
   "  dilation,support_radius,fixed,periodic,physics,modulus,density,poisson,wave_speed,\n"
   "  particles,quadrature_points,evaluated_points,bound,bound_valid,negative_phi_points,\n"
   "  x_at_bound,y_at_bound,bound_alpha,alpha,lambda_fourier,kappa_fourier,theta_fourier,\n"
-  "  dt_bound,dt_alpha,dt_fourier,dt_rule_p,dt_rule_bulk\n"
-  "options:\n"
-  "%s"
-  "  (--lattice is line or square; --spacing and --gamma follow from --nodes and --length)\n"
-  "  --nodes N | NX,NY       nodes (default 41 in 1D, 21,21 in 2D; N alone in 2D: N x N)\n"
-  "  --length L | LX,LY      domain size (default 1, 1 x 1)\n"
-  "  --fixed none|ends|boundary   leave the end (1D) or boundary (2D) nodes out\n"
-  "  --periodic              periodic model (dx = L/N); excludes --fixed\n"
-  "  --physics antiplane|plane-strain   2D physics (default antiplane)\n"
-  "  --poisson NU            Poisson ratio (plane strain, rules of thumb; default 0.25)\n"
-  "  --fourier-points K --fourier-angles K   sampling of the Fourier maximum (201, 7)\n"
-  "  -o FILE                 output file (default: standard output)\n";
+  "  dt_bound,dt_alpha,dt_fourier,dt_rule_p,dt_rule_bulk\n";
 
 int cmd_bound(int argc, char **argv)
 {
-  char helptext[8192];
-  snprintf(helptext, sizeof helptext, help, cli_disc_help);
-  eigs_opts o;
-  eigs_parse(argc, argv, helptext, 0, &o);
+  model_cmd c = {.m = {.fourier_points = 201, .fourier_angles = 7}};
+  cli_disc_defaults(&c.d);
+  unsigned char sd[CLI_DISC_NOPTS], sp[CLI_PHYSICS_NOPTS], sm[MODEL_NOPTS];
+  cli_group g[3] = {
+    {cli_disc_opts, &c.d, sd}, {cli_physics_opts, &c.d, sp}, {model_opts_table, &c.m, sm}};
+  cli_parse(argc, argv, usage, about, g, 3);
+  model_finish(&c, &g[0], &g[2]);
   eigs_derived dv;
-  eigs_derive(&o, &dv);
+  eigs_derive(&c.s, &dv);
+  const mfs_disc *d = &c.s.disc;
   mfs_bound_result br;
   size_t bad = 0;
-  int st = mfs_bound_model(&o.s, &br, &bad);
+  mfs_status st = mfs_bound_model(&c.s, &br, &bad);
   if (st != MFS_OK)
-    cli_die_status(st, &o.d, "at a quadrature point of the model");
+    cli_die_status(st, &c.d, d->dilation, "at a quadrature point of the model");
   if (!(br.lambda > 0.0))
     cli_die(1, "the element bound is %g: no quadrature point with a positive lambda^Q", br.lambda);
   double lf, kf, tf;
-  st = mfs_bound_fourier(&o.s, o.fourier_points, o.fourier_angles, &lf, &kf, &tf);
+  st = mfs_bound_fourier(&c.s, (int)c.m.fourier_points, (int)c.m.fourier_angles, &lf, &kf, &tf);
   if (st != MFS_OK)
-    cli_die_status(st, &o.d, "Fourier estimate on the uniform lattice");
-  int bvalid = !o.s.consistent_mass && br.negative_phi == 0;
-  size_t np = (size_t)o.s.nx * (size_t)(o.s.dim == 1 ? 1 : o.s.ny);
+    cli_die_status(st, &c.d, d->dilation, "Fourier estimate on the uniform lattice");
+  int bvalid = !d->consistent_mass && br.negative_phi == 0;
+  size_t np = (size_t)d->source.nx * (size_t)(d->dim == 1 ? 1 : d->source.ny);
 
   cli_out out;
-  cli_out_open(&out, o.outpath);
+  cli_out_open(&out, c.m.out);
   FILE *f = out.f;
   eigs_config_header(f);
   fputs(",particles,quadrature_points,evaluated_points,bound,bound_valid,negative_phi_points,"
         "x_at_bound,y_at_bound,bound_alpha,alpha,lambda_fourier,kappa_fourier,theta_fourier,"
         "dt_bound,dt_alpha,dt_fourier,dt_rule_p,dt_rule_bulk\n",
         f);
-  eigs_config_row(f, &o, &dv);
+  eigs_config_row(f, &c.s, &dv);
   fprintf(f, ",%zu,%zu,%zu,", np, br.points, br.evaluated);
   eigs_put(f, br.lambda, 0);
   fprintf(f, "%d,%zu,", bvalid, br.negative_phi);
@@ -86,5 +79,6 @@ int cmd_bound(int argc, char **argv)
   eigs_put(f, dv.dt_rule_p, 0);
   eigs_put(f, dv.dt_rule_bulk, 1);
   cli_out_commit(&out);
+  free(c.d.dilation.v);
   return 0;
 }

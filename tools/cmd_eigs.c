@@ -2,7 +2,6 @@
  * steps of a finite particle model (paper 003 section 5), side by side with
  * the element bound, the closed form and the Fourier estimate; and the
  * options shared with `mfstab bound`, and the data of Figs 17 and 18. */
-#include <errno.h>
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
@@ -11,8 +10,8 @@
 #include "commands.h"
 #include "eigs_figures.h"
 
-static const char help[] =
-  "usage: mfstab eigs [options] [-o FILE]\n"
+static const char usage[] = "mfstab eigs [options] [-o FILE]";
+static const char about[] =
   "Largest eigenvalue lambda_max = omega_max^2 of K v = lambda M v of a finite model (ARPACK;\n"
   "lumped mass: symmetric standard problem M^-1/2 K M^-1/2; consistent mass: generalized mode,\n"
   "CHOLMOD solves with M), with --zero-modes the zero-energy modes (shift-invert ARPACK about\n"
@@ -38,34 +37,35 @@ static const char help[] =
   "bound_valid is 1 when the element bound is a proven bound: lumped mass and every phi_I > 0 at\n"
   "the quadrature points (negative_phi_points counts the points where some phi_I <= 0).\n"
   "bound_ratio = bound / lambda_max.  rigid_modes counts the rigid fields (constant; plane strain:\n"
-  "translations and rotation) that are null vectors of K; spurious_modes the other zero modes.\n"
-  "options:\n"
-  "%s"
-  "  (--lattice is line or square; --spacing and --gamma follow from --nodes and --length)\n"
-  "  --nodes N | NX,NY       nodes (default 41 in 1D, 21,21 in 2D; N alone in 2D: N x N)\n"
-  "  --length L | LX,LY      domain size (default 1, 1 x 1)\n"
-  "  --fixed none|ends|boundary   remove the dofs of the end (1D) or boundary (2D) nodes\n"
-  "  --periodic              periodic model (dx = L/N); excludes --fixed\n"
-  "  --physics antiplane|plane-strain   2D physics (default antiplane)\n"
-  "  --poisson NU            Poisson ratio for plane strain and the rules of thumb (0.25)\n"
-  "  --zero-modes            count the zero-energy modes (eigenvalues <= tol lambda_max)\n"
-  "  --tol T                 zero-mode threshold relative to lambda_max (default 1e-8)\n"
-  "  --nev K                 eigenvalues per shift-invert run (default 6)\n"
-  "  --ncv K --maxiter K --arpack-tol T   ARPACK controls (defaults 20, 10000, 1e-12)\n"
-  "  --fourier-points K --fourier-angles K   sampling of the Fourier maximum (201, 7)\n"
-  "  --export-mtx PREFIX     write K and M to PREFIX_K.mtx, PREFIX_M.mtx (Matrix Market)\n"
-  "  -o FILE                 output file (default: standard output)\n";
+  "translations and rotation) that are null vectors of K; spurious_modes the other zero modes.\n";
 
 /* ------------------------------------------------------------------ */
-/* shared options                                                      */
+/* the options of a finite model, shared with bound                     */
 
-static int parse_int(const char *s, long *v)
-{
-  char *end;
-  errno = 0;
-  *v = strtol(s, &end, 10);
-  return end != s && *end == '\0' && errno == 0;
-}
+static const char *const fixed_names[] = {"none", "ends", "boundary", NULL};
+
+#define MOFF(f) offsetof(model_opts, f)
+const cli_opt model_opts_table[] = {
+  {.name = "--nodes", .type = CLI_TEXT, .arg = "N|NX,NY",
+   .help = "nodes (default 41 in 1D, 21,21 in 2D; N alone in 2D: N x N)", .offset = MOFF(nodes)},
+  {.name = "--length", .type = CLI_TEXT, .arg = "L|LX,LY",
+   .help = "domain size (default 1, 1 x 1)", .offset = MOFF(length)},
+  {.name = "--fixed", .type = CLI_CHOICE, .arg = "none|ends|boundary",
+   .help = "remove the dofs of the end (1D) or boundary (2D) nodes", .offset = MOFF(fixed),
+   .choices = fixed_names},
+  {.name = "--periodic", .type = CLI_FLAG, .help = "periodic model (dx = L/N); excludes --fixed",
+   .offset = MOFF(periodic)},
+  {.name = "--fourier-points", .type = CLI_INT, .arg = "K",
+   .help = "sampling of the Fourier maximum: points per ray (201)",
+   .offset = MOFF(fourier_points), .bounds = CLI_GE | CLI_LE, .lo = 2, .hi = 100000},
+  {.name = "--fourier-angles", .type = CLI_INT, .arg = "K",
+   .help = "... and angles in [0, 90] degrees (7)", .offset = MOFF(fourier_angles),
+   .bounds = CLI_GE | CLI_LE, .lo = 1, .hi = 1000},
+  {.name = "-o", .type = CLI_TEXT, .arg = "FILE", .help = "output file (default: standard output)",
+   .offset = MOFF(out)},
+  {.type = CLI_END}};
+#undef MOFF
+_Static_assert(sizeof model_opts_table / sizeof model_opts_table[0] == MODEL_NOPTS, "MODEL_NOPTS");
 
 /* "N" or "NX,NY": returns the count of numbers (1 or 2), or dies. */
 static int parse_nodes(const char *val, long *nx, long *ny)
@@ -86,7 +86,7 @@ static int parse_nodes(const char *val, long *nx, long *ny)
   } else {
     strcpy(a, val);
   }
-  if (!parse_int(a, nx) || (k == 2 && !parse_int(b, ny)))
+  if (!cli_parse_long(a, nx) || (k == 2 && !cli_parse_long(b, ny)))
     goto bad;
   if (k == 1)
     *ny = *nx;
@@ -97,91 +97,21 @@ bad:
   cli_die(2, "--nodes '%s': expected N (1D) or NX,NY (2D) with integers >= 2", val);
 }
 
-void eigs_parse(int argc, char **argv, const char *helptext, int is_eigs, eigs_opts *o)
+void model_finish(model_cmd *c, const cli_group *dg, const cli_group *mg)
 {
-  memset(o, 0, sizeof *o);
-  cli_disc_defaults(&o->d);
-  o->tol = 1e-8;
-  o->poisson = 0.25;
-  o->arpack_tol = 1e-12;
-  o->fourier_points = 201;
-  o->fourier_angles = 7;
-  o->fixed = "none";
-  static const char *const flags_eigs[] = {"--periodic", "--zero-modes", NULL};
-  static const char *const flags_bound[] = {"--periodic", "--zero-modes", NULL};
-  const char *opt, *val;
-  opt_iter it;
-  opt_init(&it, argc, argv, helptext, is_eigs ? flags_eigs : flags_bound);
-  while (opt_next(&it, &opt, &val)) {
-    if (!opt)
-      opt_unknown(opt);
-    if (strcmp(opt, "--spacing") == 0 || strcmp(opt, "--gamma") == 0)
-      cli_die(2, "%s: not an option of a finite model; the spacing follows from --nodes and --length",
-              opt);
-    if (strcmp(opt, "--lattice") == 0 && strcmp(val, "line") && strcmp(val, "square"))
-      cli_die(2, "--lattice '%s': finite models are built on lattices line (1D) and square (2D)",
-              val);
-    if (cli_disc_option(&o->d, opt, val))
-      continue;
-    if (strcmp(opt, "--nodes") == 0) {
-      o->nodes = val;
-    } else if (strcmp(opt, "--length") == 0) {
-      o->length = val;
-    } else if (strcmp(opt, "--fixed") == 0) {
-      if (strcmp(val, "none") && strcmp(val, "ends") && strcmp(val, "boundary"))
-        cli_die(2, "--fixed '%s': allowed: none, ends (1D), boundary", val);
-      o->fixed = val;
-    } else if (strcmp(opt, "--periodic") == 0) {
-      o->periodic = 1;
-    } else if (strcmp(opt, "--physics") == 0) {
-      if (strcmp(val, "antiplane") == 0)
-        o->plane_strain = 0;
-      else if (strcmp(val, "plane-strain") == 0)
-        o->plane_strain = 1;
-      else
-        cli_die(2, "--physics '%s': allowed: antiplane, plane-strain", val);
-    } else if (strcmp(opt, "--poisson") == 0) {
-      o->poisson = cli_double(opt, val);
-      if (!(o->poisson > -1.0 && o->poisson < 0.5))
-        cli_die(2, "--poisson %s: must be in (-1, 0.5)", val);
-    } else if (strcmp(opt, "--fourier-points") == 0) {
-      o->fourier_points = (int)cli_long(opt, val, 2, 100000);
-    } else if (strcmp(opt, "--fourier-angles") == 0) {
-      o->fourier_angles = (int)cli_long(opt, val, 1, 1000);
-    } else if (strcmp(opt, "-o") == 0) {
-      o->outpath = val;
-    } else if (is_eigs && strcmp(opt, "--zero-modes") == 0) {
-      o->zero_modes = 1;
-    } else if (is_eigs && strcmp(opt, "--tol") == 0) {
-      o->tol = cli_double(opt, val);
-      if (!(o->tol > 0.0 && o->tol < 1.0))
-        cli_die(2, "--tol %s: must be in (0, 1)", val);
-    } else if (is_eigs && strcmp(opt, "--nev") == 0) {
-      o->nev = (int)cli_long(opt, val, 1, 1000);
-    } else if (is_eigs && strcmp(opt, "--ncv") == 0) {
-      o->ncv = (int)cli_long(opt, val, 3, 100000);
-    } else if (is_eigs && strcmp(opt, "--maxiter") == 0) {
-      o->maxiter = (int)cli_long(opt, val, 1, 100000000);
-    } else if (is_eigs && strcmp(opt, "--arpack-tol") == 0) {
-      o->arpack_tol = cli_double(opt, val);
-      if (!(o->arpack_tol >= 0.0 && o->arpack_tol < 1.0))
-        cli_die(2, "--arpack-tol %s: must be in [0, 1) (0: machine precision)", val);
-    } else if (is_eigs && strcmp(opt, "--export-mtx") == 0) {
-      if (!*val)
-        cli_die(2, "--export-mtx '': expected a file name prefix");
-      o->export_prefix = val;
-    } else {
-      opt_unknown(opt);
-    }
-  }
-
-  /* cross-option checks, now that the dimension is known */
-  cli_disc *d = &o->d;
-  mfs_lattice_kind lat;
-  mfs_quad_rule rule;
-  cli_disc_finish(d, &lat, &rule);
-  int dim = d->dim;
+  cli_disc *d = &c->d;
+  model_opts *o = &c->m;
+  if (cli_seen(dg, "--spacing") || cli_seen(dg, "--gamma"))
+    cli_die(2, "%s: not an option of a finite model; the spacing follows from --nodes and --length",
+            cli_seen(dg, "--spacing") ? "--spacing" : "--gamma");
+  if (d->lattice == MFS_LATTICE_HEX)
+    cli_die(2, "--lattice hex: finite models are built on lattices line (1D) and square (2D)");
+  if (d->dilation.n > 1)
+    cli_die(2, "--dilation: one value, not a list");
+  mfs_disc disc = cli_disc_build(d, dg->seen);
+  int dim = disc.dim;
   long nx = dim == 1 ? 41 : 21, ny = dim == 1 ? 1 : 21;
+  const char *nodes = o->nodes ? o->nodes : "default";
   if (o->nodes) {
     int k = parse_nodes(o->nodes, &nx, &ny);
     if (k == 2 && dim == 1)
@@ -190,96 +120,87 @@ void eigs_parse(int argc, char **argv, const char *helptext, int is_eigs, eigs_o
       ny = 1;
   }
   if ((double)nx * (double)ny > 1e8)
-    cli_die(2, "--nodes %s: more than 10^8 nodes", o->nodes);
+    cli_die(2, "--nodes %s: more than 10^8 nodes", nodes);
   double lx = 1.0, ly = dim == 1 ? 0.0 : 1.0;
   if (o->length) {
-    double *L;
-    size_t k = cli_double_list("--length", o->length, &L);
+    double v[3];
+    size_t k = 0;
+    char *copy = strdup(o->length);
+    if (!copy)
+      cli_die(1, "out of memory");
+    for (char *s = strtok(copy, ","); s; s = strtok(NULL, ",")) {
+      if (k == 3 || !cli_parse_double(s, &v[k]) || !(v[k] > 0.0))
+        cli_die(2, "--length %s: expected L (1D) or LX,LY (2D), lengths > 0", o->length);
+      k++;
+    }
+    free(copy);
+    if (k == 0)
+      cli_die(2, "--length '%s': expected L (1D) or LX,LY (2D), lengths > 0", o->length);
     if (k > (size_t)dim)
       cli_die(2, "--length %s: %zu lengths for --dim %d", o->length, k, dim);
-    for (size_t i = 0; i < k; i++)
-      if (!(L[i] > 0.0))
-        cli_die(2, "--length %s: lengths must be > 0", o->length);
-    lx = L[0];
+    lx = v[0];
     if (dim == 2)
-      ly = k == 2 ? L[1] : L[0];
-    free(L);
+      ly = k == 2 ? v[1] : v[0];
   }
-  mfs_fix_kind fx = strcmp(o->fixed, "none") == 0 ? MFS_FIX_NONE
-                    : strcmp(o->fixed, "ends") == 0 ? MFS_FIX_ENDS
-                                                    : MFS_FIX_BOUNDARY;
+  mfs_fix_kind fx = (mfs_fix_kind)o->fixed;
   if (o->periodic && fx != MFS_FIX_NONE)
     cli_die(2, "--periodic with --fixed %s: a periodic model has no boundary; use --fixed none",
-            o->fixed);
+            fixed_names[fx]);
   if (dim == 2 && fx == MFS_FIX_ENDS)
     cli_die(2, "--fixed ends: a 2D model fixes its boundary; with --dim 2 allowed: none, boundary");
   if (fx != MFS_FIX_NONE && (nx < 3 || (dim == 2 && ny < 3)))
-    cli_die(2, "--fixed %s: needs at least 3 nodes per direction (--nodes %s)", o->fixed,
-            o->nodes ? o->nodes : "default");
-  if (o->plane_strain && dim != 2)
-    cli_die(2, "--physics plane-strain needs --dim 2");
+    cli_die(2, "--fixed %s: needs at least 3 nodes per direction (--nodes %s)", fixed_names[fx],
+            nodes);
   /* too few nodes for the dilation */
   double dx = o->periodic ? lx / nx : lx / (nx - 1);
   double dy = dim == 1 ? dx : (o->periodic ? ly / ny : ly / (ny - 1));
-  double a = d->dilation * dx;
+  double a = disc.dilation * dx;
   if (o->periodic) {
     if (!(nx * dx > 2.0 * a) || (dim == 2 && !(ny * dy > 2.0 * a)))
       cli_die(2,
               "--nodes %s: too few for --dilation %g in a periodic model: the box must be longer "
               "than two support radii (2 D = %g spacings)",
-              o->nodes ? o->nodes : "default", d->dilation, 2.0 * d->dilation);
+              nodes, disc.dilation, 2.0 * disc.dilation);
   } else if ((nx - 1) * dx < a * (1.0 - 1e-12) || (dim == 2 && (ny - 1) * dy < a * (1.0 - 1e-12))) {
     cli_die(2,
             "--nodes %s: too few for --dilation %g: the support radius a = %g exceeds the model; "
-            "use at least %d nodes per direction",
-            o->nodes ? o->nodes : "default", d->dilation, a, (int)ceil(d->dilation) + 1);
+            "use at least %.0f nodes per direction",
+            nodes, disc.dilation, a, ceil(disc.dilation) + 1.0);
   }
-  mfs_model_spec *s = &o->s;
-  mfs_model_spec_default(s);
-  s->dim = dim;
-  s->nx = (int)nx;
-  s->ny = (int)ny;
-  s->lx = lx;
-  s->ly = dim == 2 ? ly : 1.0;
-  s->periodic = o->periodic;
-  s->fixed = fx;
-  s->kernel = d->kernel;
-  s->shape = d->shape;
-  s->dilation = d->dilation;
-  s->quadrature = d->quadrature;
-  s->consistent_mass = d->consistent_mass;
-  s->physics = o->plane_strain ? MFS_PHYS_PLANE_STRAIN : MFS_PHYS_SCALAR;
-  s->modulus = d->modulus;
-  s->density = d->density;
-  s->poisson = o->poisson;
-  int st = mfs_model_spec_check(s);
+  disc.source = (mfs_source){.lattice = disc.source.lattice,
+                             .nx = (int)nx,
+                             .ny = (int)ny,
+                             .lx = lx,
+                             .ly = dim == 2 ? ly : 1.0,
+                             .periodic = o->periodic};
+  c->s = (mfs_model_spec){.disc = disc, .fixed = fx};
+  const char *field;
+  mfs_status st = mfs_model_spec_check(&c->s, &field);
   if (st == MFS_ETOOSMALL)
-    cli_die(2, "--nodes %s: too few for --dilation %g", o->nodes ? o->nodes : "default",
-            d->dilation);
+    cli_die(2, "--nodes %s: too few for --dilation %g", nodes, disc.dilation);
   if (st != MFS_OK) {
-    if (rule.kind == MFS_QK_VORONOI && o->periodic)
-      cli_die(2, "--quadrature stress-star --periodic: needs even node counts (--nodes %s)",
-              o->nodes ? o->nodes : "default");
-    cli_die(2, "invalid combination of options (see 'mfstab %s --help')", cli_command);
+    if (disc.quadrature->cells == MFS_CELLS_STAR && o->periodic)
+      cli_die(2, "--quadrature stress-star --periodic: needs even node counts (--nodes %s)", nodes);
+    cli_die(2, "invalid combination of options (%s; see 'mfstab %s --help')", field, cli_command);
   }
+  (void)mg;
 }
 
-void eigs_derive(const eigs_opts *o, eigs_derived *dv)
+void eigs_derive(const mfs_model_spec *s, eigs_derived *dv)
 {
-  const mfs_model_spec *s = &o->s;
-  double nu = o->poisson, rho = s->density, mu = s->modulus;
-  double E = s->dim == 1 ? s->modulus : 2.0 * mu * (1.0 + nu);
+  const mfs_disc *d = &s->disc;
+  double nu = d->material.poisson, rho = d->material.density, mu = d->material.modulus;
+  double E = d->dim == 1 ? mu : 2.0 * mu * (1.0 + nu);
   double lam = 2.0 * mu * nu / (1.0 - 2.0 * nu);
-  double dx = s->periodic ? s->lx / s->nx : s->lx / (s->nx - 1);
-  double a = s->dilation * dx;
-  dv->c = sqrt(s->modulus / rho);
-  dv->c_p = s->dim == 1 ? dv->c : sqrt((lam + 2.0 * mu) / rho);
+  double a = d->dilation * mfs_disc_dx(d);
+  dv->c = sqrt(mu / rho);
+  dv->c_p = d->dim == 1 ? dv->c : sqrt((lam + 2.0 * mu) / rho);
   dv->c_bulk = sqrt(E / (3.0 * (1.0 - 2.0 * nu)) / rho);
   dv->h_sph = 0.5 * a;
   dv->dt_rule_p = 0.3 * dv->h_sph / dv->c_p;
   dv->dt_rule_bulk = 0.3 * dv->h_sph / dv->c_bulk;
-  dv->alpha = mfs_bound_alpha(s->kernel, s->dim);
-  double cw = s->physics == MFS_PHYS_PLANE_STRAIN ? dv->c_p : dv->c;
+  dv->alpha = mfs_bound_alpha(d->kernel, d->dim);
+  double cw = d->material.physics == MFS_PHYS_PLANE_STRAIN ? dv->c_p : dv->c;
   dv->bound_alpha = dv->alpha * cw * cw / (a * a);
 }
 
@@ -300,26 +221,27 @@ void eigs_config_header(FILE *f)
         f);
 }
 
-void eigs_config_row(FILE *f, const eigs_opts *o, const eigs_derived *dv)
+void eigs_config_row(FILE *f, const mfs_model_spec *s, const eigs_derived *dv)
 {
-  const mfs_model_spec *s = &o->s;
-  double dx = s->periodic ? s->lx / s->nx : s->lx / (s->nx - 1);
-  double dy = s->dim == 1 ? 0.0 : (s->periodic ? s->ly / s->ny : s->ly / (s->ny - 1));
-  fprintf(f, "%d,%d,%d,", s->dim, s->nx, s->dim == 1 ? 1 : s->ny);
-  eigs_put(f, s->lx, 0);
-  eigs_put(f, s->dim == 1 ? 0.0 : s->ly, 0);
+  const mfs_disc *d = &s->disc;
+  const mfs_source *src = &d->source;
+  double dx = mfs_disc_dx(d), dy = mfs_disc_dy(d);
+  fprintf(f, "%d,%d,%d,", d->dim, src->nx, d->dim == 1 ? 1 : src->ny);
+  eigs_put(f, src->lx, 0);
+  eigs_put(f, d->dim == 1 ? 0.0 : src->ly, 0);
   eigs_put(f, dx, 0);
   eigs_put(f, dy, 0);
-  fprintf(f, "%s,%s,%s,%s,", s->kernel->name, s->shape->name, s->quadrature,
-          s->consistent_mass ? "consistent" : "lumped");
-  eigs_put(f, s->dilation, 0);
-  eigs_put(f, s->dilation * dx, 0);
-  const char *fixn = s->fixed == MFS_FIX_NONE ? "none" : (s->dim == 1 ? "ends" : "boundary");
-  fprintf(f, "%s,%d,%s,", fixn, s->periodic,
-          s->physics == MFS_PHYS_PLANE_STRAIN ? "plane-strain" : (s->dim == 1 ? "bar" : "antiplane"));
-  eigs_put(f, s->modulus, 0);
-  eigs_put(f, s->density, 0);
-  eigs_put(f, o->poisson, 0);
+  fprintf(f, "%s,%s,%s,%s,", d->kernel->name, d->shape->name, d->quadrature->name,
+          d->consistent_mass ? "consistent" : "lumped");
+  eigs_put(f, d->dilation, 0);
+  eigs_put(f, d->dilation * dx, 0);
+  const char *fixn = s->fixed == MFS_FIX_NONE ? "none" : (d->dim == 1 ? "ends" : "boundary");
+  fprintf(f, "%s,%d,%s,", fixn, src->periodic,
+          d->material.physics == MFS_PHYS_PLANE_STRAIN ? "plane-strain"
+                                                       : (d->dim == 1 ? "bar" : "antiplane"));
+  eigs_put(f, d->material.modulus, 0);
+  eigs_put(f, d->material.density, 0);
+  eigs_put(f, d->material.poisson, 0);
   fprintf(f, "%.16g", dv->c);
 }
 
@@ -349,43 +271,83 @@ static void export_one(const mfs_model *m, const char *prefix, const char *which
   snprintf(path, len, "%s_%s.mtx", prefix, which);
   cli_out o;
   cli_out_open(&o, path);
-  int st = which[0] == 'K' ? mfs_model_write_mtx(m, o.f, NULL) : mfs_model_write_mtx(m, NULL, o.f);
+  mfs_status st =
+    which[0] == 'K' ? mfs_model_write_mtx(m, o.f, NULL) : mfs_model_write_mtx(m, NULL, o.f);
   if (st != MFS_OK)
     cli_die(1, "--export-mtx %s: cannot write: %s", path, mfs_strerror(st));
   cli_out_commit(&o);
   free(path);
 }
 
+typedef struct {
+  int zero_modes;
+  double tol;
+  long nev, ncv, maxiter;
+  double arpack_tol;
+  const char *export_prefix;
+} eig_opts;
+
+#define EOFF(f) offsetof(eig_opts, f)
+static const cli_opt eig_table[] = {
+  {.name = "--zero-modes", .type = CLI_FLAG,
+   .help = "count the zero-energy modes (eigenvalues <= tol lambda_max)", .offset = EOFF(zero_modes)},
+  {.name = "--tol", .type = CLI_REAL, .arg = "T",
+   .help = "zero-mode threshold relative to lambda_max (default 1e-8)", .offset = EOFF(tol),
+   .bounds = CLI_GT | CLI_LT, .lo = 0, .hi = 1},
+  {.name = "--nev", .type = CLI_INT, .arg = "K", .help = "eigenvalues per shift-invert run (default 6)",
+   .offset = EOFF(nev), .bounds = CLI_GE | CLI_LE, .lo = 1, .hi = 1000},
+  {.name = "--ncv", .type = CLI_INT, .arg = "K", .help = "ARPACK Lanczos vectors (default 20)",
+   .offset = EOFF(ncv), .bounds = CLI_GE | CLI_LE, .lo = 3, .hi = 100000},
+  {.name = "--maxiter", .type = CLI_INT, .arg = "K", .help = "ARPACK restarts (default 10000)",
+   .offset = EOFF(maxiter), .bounds = CLI_GE | CLI_LE, .lo = 1, .hi = 100000000},
+  {.name = "--arpack-tol", .type = CLI_REAL, .arg = "T",
+   .help = "ARPACK relative accuracy (default 1e-12; 0: machine precision)",
+   .offset = EOFF(arpack_tol), .bounds = CLI_GE | CLI_LT, .lo = 0, .hi = 1},
+  {.name = "--export-mtx", .type = CLI_TEXT, .arg = "PREFIX",
+   .help = "write K and M to PREFIX_K.mtx, PREFIX_M.mtx (Matrix Market)",
+   .offset = EOFF(export_prefix)},
+  {.type = CLI_END}};
+#undef EOFF
+
 int cmd_eigs(int argc, char **argv)
 {
-  char helptext[12288];
-  snprintf(helptext, sizeof helptext, help, cli_disc_help);
-  eigs_opts o;
-  eigs_parse(argc, argv, helptext, 1, &o);
+  model_cmd c = {.m = {.fourier_points = 201, .fourier_angles = 7}};
+  cli_disc_defaults(&c.d);
+  eig_opts e = {.tol = 1e-8, .arpack_tol = 1e-12};
+  unsigned char sd[CLI_DISC_NOPTS], sp[CLI_PHYSICS_NOPTS], sm[MODEL_NOPTS], se[8];
+  cli_group g[4] = {{cli_disc_opts, &c.d, sd},
+                    {cli_physics_opts, &c.d, sp},
+                    {model_opts_table, &c.m, sm},
+                    {eig_table, &e, se}};
+  cli_parse(argc, argv, usage, about, g, 4);
+  if (e.export_prefix && !*e.export_prefix)
+    cli_die(2, "--export-mtx '': expected a file name prefix");
+  model_finish(&c, &g[0], &g[2]);
   eigs_derived dv;
-  eigs_derive(&o, &dv);
+  eigs_derive(&c.s, &dv);
 
-  int st;
+  mfs_status st;
   size_t bad = 0;
-  mfs_model *m = mfs_model_alloc(&o.s, &st, &bad);
+  double D = c.s.disc.dilation;
+  mfs_model *m = mfs_model_alloc(&c.s, &st, &bad);
   if (!m)
-    cli_die_status(st, &o.d, "at a quadrature point of the model");
+    cli_die_status(st, &c.d, D, "at a quadrature point of the model");
   mfs_bound_result br;
   st = mfs_bound_of_model(m, &br);
   if (st != MFS_OK)
     cli_die(1, "element bound: %s", mfs_strerror(st));
   mfs_model_release_plan(m);
-  if (o.export_prefix) {
-    export_one(m, o.export_prefix, "K");
-    export_one(m, o.export_prefix, "M");
+  if (e.export_prefix) {
+    export_one(m, e.export_prefix, "K");
+    export_one(m, e.export_prefix, "M");
   }
   double lf, kf, tf;
-  st = mfs_bound_fourier(&o.s, o.fourier_points, o.fourier_angles, &lf, &kf, &tf);
+  st = mfs_bound_fourier(&c.s, (int)c.m.fourier_points, (int)c.m.fourier_angles, &lf, &kf, &tf);
   if (st != MFS_OK)
-    cli_die_status(st, &o.d, "Fourier estimate on the uniform lattice");
+    cli_die_status(st, &c.d, D, "Fourier estimate on the uniform lattice");
 
   mfs_pencil P = {m->K, m->M, m->m};
-  mfs_eig_opts eo = {o.ncv, o.maxiter, o.arpack_tol};
+  mfs_eig_opts eo = {(int)e.ncv, (int)e.maxiter, e.arpack_tol};
   mfs_eig_info info;
   double lam = 0.0;
   if (m->n < 2)
@@ -401,8 +363,8 @@ int cmd_eigs(int argc, char **argv)
   mfs_zero_modes z = {0};
   mfs_eig_info zinfo = {0};
   int rigid = 0;
-  if (o.zero_modes) {
-    mfs_zero_opts zo = {o.tol, o.nev, 0, 0};
+  if (e.zero_modes) {
+    mfs_zero_opts zo = {e.tol, (int)e.nev, 0, 0};
     st = mfs_eig_zero_modes(&P, lam, &zo, &eo, &z, &zinfo);
     if (st != MFS_OK)
       die_eig(st, &zinfo, "zero-energy modes");
@@ -413,24 +375,24 @@ int cmd_eigs(int argc, char **argv)
         cli_die(1, "out of memory");
       mfs_model_rigid_fields(m, r);
       for (int k = 0; k < nr; k++)
-        rigid += mfs_eig_is_null(&P, r + (size_t)k * m->n, lam, o.tol);
+        rigid += mfs_eig_is_null(&P, r + (size_t)k * m->n, lam, e.tol);
       free(r);
     }
   }
 
-  int bvalid = !o.s.consistent_mass && br.negative_phi == 0;
+  int bvalid = !c.s.disc.consistent_mass && br.negative_phi == 0;
   cli_out out;
-  cli_out_open(&out, o.outpath);
+  cli_out_open(&out, c.m.out);
   FILE *f = out.f;
   eigs_config_header(f);
   fputs(",dofs,lambda_max,omega_max,bound,bound_valid,negative_phi_points,bound_alpha,alpha,"
         "lambda_fourier,kappa_fourier,theta_fourier,dt_crit,dt_bound,dt_alpha,dt_fourier,"
         "dt_rule_p,dt_rule_bulk,bound_ratio,arpack_iterations,arpack_matvecs,arpack_residual",
         f);
-  if (o.zero_modes)
+  if (e.zero_modes)
     fputs(",zero_tol,zero_modes,rigid_modes,spurious_modes,lambda_min_nonzero,zero_runs", f);
   fputc('\n', f);
-  eigs_config_row(f, &o, &dv);
+  eigs_config_row(f, &c.s, &dv);
   fprintf(f, ",%zu,", m->n);
   eigs_put(f, lam, 0);
   eigs_put(f, sqrt(lam), 0);
@@ -449,26 +411,28 @@ int cmd_eigs(int argc, char **argv)
   eigs_put(f, dv.dt_rule_bulk, 0);
   eigs_put(f, br.lambda / lam, 0);
   fprintf(f, "%d,%d,", iters, mv);
-  eigs_put(f, resid, !o.zero_modes);
-  if (o.zero_modes) {
-    eigs_put(f, o.tol, 0);
+  eigs_put(f, resid, !e.zero_modes);
+  if (e.zero_modes) {
+    eigs_put(f, e.tol, 0);
     fprintf(f, "%d,%d,%d,", z.count, rigid, z.count - rigid);
     eigs_put(f, z.lambda_min_nonzero, 0);
     fprintf(f, "%d\n", zinfo.runs);
   }
   cli_out_commit(&out);
   mfs_model_free(m);
+  free(c.d.dilation.v);
   return 0;
 }
 
 /* ------------------------------------------------------------------ */
 /* Figs 17 and 18                                                      */
 
-static int fig_row(FILE *f, const char *fig, const mfs_model_spec *s, int nodes)
+static int fig_row(FILE *f, const char *fig, const mfs_model_spec *ms, int nodes)
 {
-  int st;
+  const mfs_disc *s = &ms->disc;
+  mfs_status st;
   size_t bad;
-  mfs_model *m = mfs_model_alloc(s, &st, &bad);
+  mfs_model *m = mfs_model_alloc(ms, &st, &bad);
   if (!m) {
     fprintf(stderr, "mfstab %s: %s D = %g: %s\n", cli_command, fig, s->dilation, mfs_strerror(st));
     return 1;
@@ -490,7 +454,7 @@ static int fig_row(FILE *f, const char *fig, const mfs_model_spec *s, int nodes)
   double alpha = mfs_bound_alpha(s->kernel, s->dim);
   double paper1 = s->dim == 1 ? MFS_PAPER_ALPHA : MFS_PAPER_ALPHA1;
   fprintf(f, "%s,%s,%s,%s,lumped,%d,%.16g,%.16g,%.16g,%.16g,%.16g,", fig, s->kernel->name,
-          s->shape->name, s->quadrature, nodes, s->dilation, lam * dx2, br.lambda * dx2,
+          s->shape->name, s->quadrature->name, nodes, s->dilation, lam * dx2, br.lambda * dx2,
           alpha / D2, paper1 / D2);
   if (s->dim == 2) /* eq. 148 is 2D only: an empty field in 1D */
     fprintf(f, "%.16g", MFS_PAPER_ALPHA2 / D2);
@@ -512,24 +476,24 @@ static int fig_file(const char *dir, const char *name, const mfs_kernel_type *k,
   fputs("figure,kernel,shape,quadrature,mass,nodes,dilation,lambda_max_dx2,bound_dx2,"
         "alpha_dx2,paper_alpha_dx2,paper_alpha2_dx2,bound_ratio,alpha_ratio,negative_phi_points\n",
         f);
-  mfs_model_spec s;
-  mfs_model_spec_default(&s);
-  s.kernel = k;
-  s.quadrature = "gauss2";
+  mfs_model_spec s = mfs_model_spec_default();
+  s.disc.kernel = k;
+  s.disc.quadrature = &mfs_quad_gauss[1];
   int bad = 0;
   if (dim == 1) {
     static const int nn[2] = {41, 101};
     for (int a = 0; a < 2 && !bad; a++)
       for (int i = 0; i <= 12 && !bad; i++) {
-        s.nx = nn[a];
-        s.dilation = 1.0 + 0.25 * i;
+        s.disc.source.nx = nn[a];
+        s.disc.dilation = 1.0 + 0.25 * i;
         bad = fig_row(f, "17", &s, nn[a]);
       }
   } else {
-    s.dim = 2;
-    s.nx = s.ny = 21;
+    s.disc.dim = 2;
+    s.disc.source.lattice = MFS_LATTICE_SQUARE;
+    s.disc.source.nx = s.disc.source.ny = 21;
     for (int i = 0; i <= 14 && !bad; i++) {
-      s.dilation = 1.5 + 0.25 * i;
+      s.disc.dilation = 1.5 + 0.25 * i;
       bad = fig_row(f, "18", &s, 21 * 21);
     }
   }

@@ -16,8 +16,8 @@
 #include "commands.h"
 #include "eigs_figures.h"
 
-static const char help[] =
-  "usage: mfstab reproduce [--out DIR]\n"
+static const char usage[] = "mfstab reproduce [--out DIR]";
+static const char about[] =
   "Regenerate the reproduced tables and figures of Belytschko, Guo, Liu, Xiao (2000) as CSV\n"
   "in DIR (default notebooks-data) and print: artifact, paper value, mfstab value, status.\n"
   "status: match (agrees to the printed digits), errata (two independent paths of mfstab\n"
@@ -99,13 +99,23 @@ static void table1(void)
   }
 }
 
+/* The 1D MLS discretization of the paper's figures. */
+static mfs_disc line_disc(const char *quad, const mfs_kernel_type *k, double D, mfs_frame frame)
+{
+  mfs_disc d = mfs_disc_default();
+  d.quadrature = mfs_quad_find(quad);
+  d.kernel = k;
+  d.dilation = D;
+  d.frame = frame;
+  return d;
+}
+
 /* max over kappa of omega2 at sigma = 0, and where */
 static double max_omega2(const char *quad, mfs_frame frame, const mfs_kernel_type *k, double D,
                          double *where)
 {
-  mfs_disp_spec s = {1, MFS_LATTICE_LINE, 1.0, quad, k, &mfs_shape_mls, D, frame,
-                     MFS_PHYS_SCALAR, 0.0, 1.0, 0, 0.0};
-  int st;
+  mfs_disp_spec s = {.disc = line_disc(quad, k, D, frame), .stretch = 1.0};
+  mfs_status st;
   mfs_disp_plan *pl = mfs_disp_plan_alloc(&s, &st);
   if (!pl)
     cli_die(1, "Table II: %s", mfs_strerror(st));
@@ -193,9 +203,9 @@ static void figures(void)
   double where;
   double z = max_omega2("nodal", MFS_FRAME_LAGRANGIAN, &mfs_kernel_quartic, 1.5, &where);
   (void)z;
-  mfs_disp_spec s = {1, MFS_LATTICE_LINE, 1.0, "nodal", &mfs_kernel_quartic, &mfs_shape_mls,
-                     1.5, MFS_FRAME_EULERIAN, MFS_PHYS_SCALAR, 0.0, 1.0, 0, 0.0};
-  int st;
+  mfs_disp_spec s = {.disc = line_disc("nodal", &mfs_kernel_quartic, 1.5, MFS_FRAME_EULERIAN),
+                     .stretch = 1.0};
+  mfs_status st;
   mfs_disp_plan *pl = mfs_disp_plan_alloc(&s, &st);
   double complex w;
   mfs_disp_omega2(pl, 0.0, 1.0, 0.0, &w);
@@ -212,8 +222,8 @@ static void figures(void)
   double prev = INFINITY;
   int ok = 1;
   for (int i = 0; i < 4; i++) {
-    mfs_disp_spec s2 = {1, MFS_LATTICE_LINE, 1.0, "stress", &mfs_kernel_cubic, &mfs_shape_mls,
-                        dil[i], MFS_FRAME_LAGRANGIAN, MFS_PHYS_SCALAR, 0.0, 1.0, 0, 0.0};
+    mfs_disp_spec s2 = {
+      .disc = line_disc("stress", &mfs_kernel_cubic, dil[i], MFS_FRAME_LAGRANGIAN), .stretch = 1.0};
     mfs_disp_plan *p2 = mfs_disp_plan_alloc(&s2, &st);
     mfs_disp_omega2(p2, 0.0, 1.0, 0.0, &w);
     ok &= creal(w) > 0.0 && creal(w) < prev;
@@ -269,17 +279,22 @@ static void figure17(void)
   row("Fig 17 bound >= lambda_max, D=1..4", "yes", ok && rows > 0, ok && rows > 0 ? "match" : "differs");
 }
 
+typedef struct {
+  const char *out;
+} repro_opts;
+
+static const cli_opt opts[] = {
+  {.name = "--out", .type = CLI_TEXT, .arg = "DIR",
+   .help = "directory of the CSV files (default notebooks-data)", .offset = offsetof(repro_opts, out)},
+  {.type = CLI_END}};
+
 int cmd_reproduce(int argc, char **argv)
 {
-  const char *opt, *val;
-  opt_iter it;
-  opt_init(&it, argc, argv, help, NULL);
-  while (opt_next(&it, &opt, &val)) {
-    if (opt && strcmp(opt, "--out") == 0)
-      outdir = val;
-    else
-      opt_unknown(opt);
-  }
+  repro_opts o = {.out = "notebooks-data"};
+  unsigned char seen[2];
+  cli_group g = {opts, &o, seen};
+  cli_parse(argc, argv, usage, about, &g, 1);
+  outdir = o.out;
   if (mkdir(outdir, 0777) != 0 && errno != EEXIST)
     cli_die(2, "--out %s: cannot create the directory (%s)", outdir, strerror(errno));
   printf("%-44s %-14s %-14s %s\n", "artifact", "paper", "mfstab", "status");

@@ -1,7 +1,8 @@
-/* mfstab run: explicit time integration of a scene (tools/scene.h) with the
- * reference solver (lib/mfs_solver.h), the TSPH bar (lib/mfs_tsph.h) or, in
- * 2D, the linear plate (lib/mfs_solver2d.h); writes a CSV time series of the
- * probes the scene names. */
+/* mfstab run: explicit time integration of a scene (tools/scene.h) with one
+ * of the reference solvers (the rod, lib/mfs_solver.h; the TSPH bar,
+ * lib/mfs_tsph.h; the linear plate, lib/mfs_solver2d.h) through their one
+ * interface (lib/mfs_integrator.h): one time loop, one probe table, one CSV
+ * writer. */
 #include <complex.h>
 #undef I
 #include <gsl/gsl_rng.h>
@@ -14,8 +15,8 @@
 #include "commands.h"
 #include "scene.h"
 
-static const char help[] =
-  "usage: mfstab run SCENE.ini [--set SECTION.KEY=VALUE ...] [-o FILE]\n"
+static const char usage[] = "mfstab run SCENE.ini [--set SECTION.KEY=VALUE ...] [-o FILE]";
+static const char about[] =
   "Explicit time integration of a 1D rod of particles (lib/mfs_solver.h) or a 2D plate\n"
   "(dim = 2, lib/mfs_solver2d.h) described by an INI scene file; writes CSV columns t followed\n"
   "by the probes of [output] probes.\n"
@@ -62,20 +63,31 @@ static const char help[] =
   "  refused with dim = 2: frame = eulerian, initial_stress, equilibrate, skin, perturbation,\n"
   "                   seed, left/right keys, formulation = stress_velocity, [output] mode, the\n"
   "                   probes sigma_end, sigma_center, v_mid, v_err\n"
-  "options:\n"
-  "  --set SECTION.KEY=VALUE   override a key of the scene (repeatable)\n"
-  "  -o FILE                   output file (default: standard output)\n"
   "Exit codes: 0 success, 2 bad input (file:line: [section] key = value: why), 1 numerical\n"
   "failure (e.g. a non-finite value or an inverted deformation).\n";
 
-static void die_status(const scene *sc, int st, size_t bad, double t)
+/* Die with the message of a library status met at time t (bad: the
+ * quadrature point of a singular moment matrix). */
+static _Noreturn void die_run(const scene *sc, const mfs_integrator_type *type, mfs_status st,
+                              size_t bad, double t)
 {
-  if (st == MFS_ESINGULAR)
+  if (st == MFS_ESINGULAR) {
+    if (type == &mfs_integrator_tsph)
+      scene_key_error(sc, "discretization", "dilation",
+                      "a particle sees no neighbour of the other set; use a larger dilation");
     scene_key_error(sc, "discretization", "dilation",
-                    "singular moment matrix at quadrature point %zu%s; use a larger dilation",
-                    bad, t > 0 ? " during the run" : "");
-  if (st == MFS_ETOOSMALL)
+                    "singular moment matrix at quadrature point %zu%s; use a larger dilation", bad,
+                    t > 0 ? " during the run" : "");
+  }
+  if (st == MFS_ETOOSMALL) {
+    const mfs_disc *d = &sc->spec.disc;
+    if (sc->dim == 2 && !(d->source.nx > 2.0 * d->dilation))
+      scene_key_error(sc, "model", "nodes", "too few nodes for the support radius");
+    if (sc->dim == 2)
+      scene_key_error(sc, "model", "length_y",
+                      "the periodic box is not longer than two support radii (2 D dx) in y");
     scene_key_error(sc, "model", "nodes", "too few nodes for the support radius");
+  }
   if (st == MFS_EINVAL)
     cli_die(2, "%s: invalid combination of keys: %s", sc->path, mfs_strerror(st));
   cli_die(1, "%s: at t = %g s: %s", sc->path, t, mfs_strerror(st));
@@ -95,7 +107,7 @@ static double pulse(const scene *sc, double X)
  * Neumann ends: a free end reflects velocity with the same sign). */
 static double free_rod_velocity(const scene *sc, double c, double X, double t)
 {
-  double L = sc->spec.length, r = 0.0;
+  double L = sc->spec.disc.source.lx, r = 0.0;
   for (int k = 0; k < 2; k++) {
     double y = fmod(X + (k ? c * t : -c * t), 2.0 * L);
     if (y < 0)
@@ -107,40 +119,87 @@ static double free_rod_velocity(const scene *sc, double c, double X, double t)
   return r;
 }
 
+/* ---- the probes: one table for every solver ---- */
+
+typedef struct {
+  const scene *sc;
+  const mfs_integrator *in;
+  size_t center;           /* dof of `component` nearest the centre */
+  size_t qend, qcen;       /* stress points nearest the end and the centre (1D) */
+  double kin, pot, mod;    /* energies of this row */
+  const double *ec, *es;   /* 2D mode_amp: cos and -sin of k.X on the dofs of `component` */
+  size_t nmode;
+} probe_ctx;
+
+typedef double (*probe_fn)(const probe_ctx *c, const mfs_state *st);
+
+static double p_v_center(const probe_ctx *c, const mfs_state *st) { return st->v[c->center]; }
+static double p_u_center(const probe_ctx *c, const mfs_state *st) { return st->u[c->center]; }
+static double p_kinetic(const probe_ctx *c, const mfs_state *st) { (void)st; return c->kin; }
+static double p_potential(const probe_ctx *c, const mfs_state *st) { (void)st; return c->pot; }
+static double p_total(const probe_ctx *c, const mfs_state *st) { (void)st; return c->kin + c->pot; }
+static double p_modified(const probe_ctx *c, const mfs_state *st) { (void)st; return c->mod; }
+static double p_sigma_end(const probe_ctx *c, const mfs_state *st) { return st->sigma[c->qend]; }
+static double p_sigma_center(const probe_ctx *c, const mfs_state *st) { return st->sigma[c->qcen]; }
+
+/* (2/n) |sum_I u_I exp(-i kappa X_I)|: 1D kappa dX = pi mode; 2D the Bloch
+ * wave vector of [initial] mode_x, mode_y on the dofs of `component`. */
+static double p_mode_amp(const probe_ctx *c, const mfs_state *st)
+{
+  if (st->dim == 1) {
+    double complex z = 0;
+    for (size_t I = 0; I < st->n; I++)
+      z += st->u[I] * cexp(-1.0 * _Complex_I * M_PI * c->sc->mode * (double)I);
+    return 2.0 * cabs(z) / (double)st->n;
+  }
+  double re = 0.0, im = 0.0;
+  for (size_t i = 0; i < st->n; i++) {
+    re += st->u[i] * c->ec[i];
+    im += st->u[i] * c->es[i];
+  }
+  return 2.0 * hypot(re, im) / (double)c->nmode;
+}
+
+/* The largest particle speed. */
+static double p_max_v(const probe_ctx *c, const mfs_state *st)
+{
+  (void)c;
+  double val = 0.0;
+  size_t nd = (size_t)st->ncomp;
+  for (size_t i = 0; i + nd <= st->n; i += nd)
+    val = fmax(val, nd == 2 ? hypot(st->v[i], st->v[i + 1]) : fabs(st->v[i]));
+  return val;
+}
+
+/* The velocity at L/2 (linear interpolation between particles). */
+static double p_v_mid(const probe_ctx *c, const mfs_state *st)
+{
+  if (c->sc->spec.disc.source.periodic)
+    return st->v[c->center];
+  return mfs_lerp_uniform(st->v, st->n, st->dx, 0.5 * c->sc->spec.disc.source.lx);
+}
+
 /* Relative discrete L2 error of the particle velocities against the exact
  * free-rod solution (paper 000 eq. 75): ||v_h - v|| / ||v||. */
-static double velocity_error(const scene *sc, double c, const double *X, const double *v,
-                             size_t n, double t)
+static double p_v_err(const probe_ctx *c, const mfs_state *st)
 {
-  double e = 0.0, r = 0.0;
-  for (size_t I = 0; I < n; I++) {
-    double ve = free_rod_velocity(sc, c, X[I], t);
-    e += (v[I] - ve) * (v[I] - ve);
+  const mfs_material *m = &c->sc->spec.disc.material;
+  double cw = sqrt(m->modulus / m->density), e = 0.0, r = 0.0;
+  for (size_t I = 0; I < st->n; I++) {
+    double ve = free_rod_velocity(c->sc, cw, st->X[I], st->t);
+    e += (st->v[I] - ve) * (st->v[I] - ve);
     r += ve * ve;
   }
   return sqrt(e / r);
 }
 
-/* Velocity at X by linear interpolation on the uniform particles. */
-static double velocity_at(const double *v, size_t n, double dX, double X)
-{
-  double q = X / dX;
-  if (!(q > 0.0))
-    return v[0];
-  if (q >= (double)(n - 1))
-    return v[n - 1];
-  size_t I = (size_t)q;
-  double f = q - (double)I;
-  return (1.0 - f) * v[I] + f * v[I + 1];
-}
-
-static void put(FILE *f, double v)
-{
-  char b[40];
-  cli_fmt(b, sizeof b, v);
-  fputc(',', f);
-  fputs(b, f);
-}
+static const probe_fn probes[PROBE_COUNT] = {
+  [PROBE_V_CENTER] = p_v_center,   [PROBE_U_CENTER] = p_u_center,
+  [PROBE_KINETIC] = p_kinetic,     [PROBE_POTENTIAL] = p_potential,
+  [PROBE_TOTAL] = p_total,         [PROBE_SIGMA_END] = p_sigma_end,
+  [PROBE_SIGMA_CENTER] = p_sigma_center, [PROBE_MODE_AMP] = p_mode_amp,
+  [PROBE_MAX_V] = p_max_v,         [PROBE_V_MID] = p_v_mid,
+  [PROBE_V_ERR] = p_v_err,         [PROBE_MODIFIED] = p_modified};
 
 static void progress(int tty, long k, long nsteps, int *shown)
 {
@@ -156,425 +215,227 @@ static void progress(int tty, long k, long nsteps, int *shown)
   }
 }
 
-/* A [time] dt above the stable step `limit` (s) of `rule`, without force. */
-static _Noreturn void refuse_dt(const scene *sc, const char *rule, double limit, const char *why)
+/* ---- building the run ---- */
+
+/* The solver of the scene, through its interface. */
+static mfs_integrator build(scene *sc)
 {
-  scene_key_error(sc, "time", "dt",
-                  "above the %s stability limit %.6g s %s; lower it or set [time] force = 1", rule,
-                  limit, why);
+  mfs_integrator in = {.scheme = sc->scheme};
+  mfs_status st;
+  size_t bad = 0;
+  if (sc->dim == 2) {
+    mfs_model_spec ms = scene_model_spec(sc);
+    in.type = &mfs_integrator_plate;
+    in.solver = mfs_solver2d_alloc(&ms, &st, &bad);
+  } else if (sc->stress_velocity) {
+    mfs_tsph_spec ts = scene_tsph_spec(sc);
+    in.type = &mfs_integrator_tsph;
+    in.solver = mfs_tsph_alloc(&ts, &st);
+  } else {
+    in.type = &mfs_integrator_rod;
+    in.solver = mfs_solver_alloc(&sc->spec, &st, &bad);
+  }
+  if (!in.solver)
+    die_run(sc, in.type, st, bad, 0.0);
+  return in;
 }
 
-static const char central_why[] = "(2/sqrt(lambda_max), eqs 120, 132)";
-
-static void die_tsph(const scene *sc, int st, double t)
+/* The step: [time] dt checked against the solver's stable step, or safety
+ * times it. */
+static void choose_dt(const scene *sc, mfs_integrator *in)
 {
-  if (st == MFS_ESINGULAR)
-    scene_key_error(sc, "discretization", "dilation",
-                    "a particle sees no neighbour of the other set; use a larger dilation");
-  if (st == MFS_EINVAL)
-    cli_die(2, "%s: invalid combination of keys: %s", sc->path, mfs_strerror(st));
-  cli_die(1, "%s: at t = %g s: %s", sc->path, t, mfs_strerror(st));
-}
-
-/* [model] formulation = stress_velocity: the TSPH bar (lib/mfs_tsph.h). */
-static int run_tsph(scene *sc, const char *outpath)
-{
-  int st;
-  mfs_tsph_spec spec = scene_tsph_spec(sc);
-  mfs_tsph *s = mfs_tsph_alloc(&spec, &st);
-  if (!s)
-    die_tsph(sc, st, 0.0);
-  double dts = mfs_tsph_dt_stable(s);
+  double dts = in->type->stable_dt(in->solver);
+  const char *rule = in->type->step_rule;
+  char why[96];
+  if (in->type == &mfs_integrator_tsph)
+    snprintf(why, sizeof why, "of %s (lib/mfs_tsph.h)", mfs_tsph_scheme_name(sc->tscheme));
+  else
+    snprintf(why, sizeof why, "(2/sqrt(lambda_max), eqs 120, 132)");
   if (!(dts > 0.0) && !(sc->have_dt && sc->force)) {
-    mfs_tsph_free(s);
+    in->type->free(in->solver);
     scene_key_error(sc, "time", "scheme",
                     "%s is unstable for every dt on this central operator (von Neumann); "
                     "set [discretization] artificial_viscosity > 0, or [time] dt and force = 1",
-                    mfs_tsph_scheme_name(spec.scheme));
+                    mfs_tsph_scheme_name(sc->tscheme));
   }
-  if (sc->have_dt && sc->dt > dts * (1.0 + 1e-9) && !sc->force) {
-    char why[64];
-    snprintf(why, sizeof why, "of %s (lib/mfs_tsph.h)", mfs_tsph_scheme_name(spec.scheme));
-    mfs_tsph_free(s);
-    refuse_dt(sc, "von Neumann", dts, why);
-  }
-  if (mfs_tsph_set_dt(s, sc->have_dt ? sc->dt : sc->safety * dts) != MFS_OK)
-    die_tsph(sc, MFS_EINVAL, 0.0);
-  size_t n = s->n;
-  double *v0 = calloc(n, sizeof *v0);
-  if (!v0)
-    cli_die(1, "out of memory");
-  if (sc->pulse_amplitude != 0.0)
-    for (size_t I = 0; I < n; I++)
-      v0[I] = pulse(sc, s->X[I]);
-  size_t ic = 0, L = n - 1;
-  for (size_t I = 0; I < n; I++)
-    if (fabs(s->X[I] - 0.5 * spec.length) < fabs(s->X[ic] - 0.5 * spec.length))
-      ic = I;
-  v0[ic] += sc->center_velocity;
-  if ((st = mfs_tsph_set_state(s, NULL, v0)) != MFS_OK)
-    die_tsph(sc, st, 0.0);
-  free(v0);
-  double c = sqrt(spec.modulus / spec.density);
-
-  cli_out out;
-  cli_out_open(&out, outpath);
-  fputs("t", out.f);
-  for (int p = 0; p < sc->nprobes; p++)
-    fprintf(out.f, ",%s", scene_probe_names[sc->probe[p]]);
-  fputc('\n', out.f);
-  long nsteps = (long)ceil(sc->end / s->dt * (1.0 - 1e-12));
-  int tty = isatty(STDERR_FILENO), shown = -1;
-  for (long k = 0;; k++) {
-    if (k % sc->every == 0 || k == nsteps) {
-      double kin, pot;
-      mfs_tsph_energy(s, &kin, &pot);
-      char b[40];
-      cli_fmt(b, sizeof b, s->t);
-      fputs(b, out.f);
-      for (int p = 0; p < sc->nprobes; p++) {
-        double val = 0.0;
-        switch (sc->probe[p]) {
-        case PROBE_V_CENTER: val = s->v[ic]; break;
-        case PROBE_KINETIC: val = kin; break;
-        case PROBE_POTENTIAL: val = pot; break;
-        case PROBE_TOTAL: val = kin + pot; break;
-        case PROBE_SIGMA_END: val = s->sigma[L]; break;
-        case PROBE_SIGMA_CENTER: val = s->sigma[ic]; break;
-        case PROBE_MAX_V:
-          for (size_t I = 0; I < n; I++)
-            val = fmax(val, fabs(s->v[I]));
-          break;
-        case PROBE_V_MID: val = mfs_tsph_velocity_at(s, 0.5 * spec.length); break;
-        case PROBE_V_ERR: val = velocity_error(sc, c, s->X, s->v, n, s->t); break;
-        default: break; /* refused by scene_finish */
-        }
-        put(out.f, val);
-      }
-      fputc('\n', out.f);
-    }
-    if (k == nsteps)
-      break;
-    if ((st = mfs_tsph_step(s)) != MFS_OK)
-      die_tsph(sc, st, s->t);
-    progress(tty, k, nsteps, &shown);
-  }
-  mfs_tsph_free(s);
-  cli_out_commit(&out);
-  return 0;
-}
-
-static void die_2d(const scene *sc, const mfs_model_spec *ms, int st, size_t bad, double t)
-{
-  if (st == MFS_ESINGULAR)
-    scene_key_error(sc, "discretization", "dilation",
-                    "singular moment matrix at quadrature point %zu; use a larger dilation", bad);
-  if (st == MFS_ETOOSMALL) { /* mfs_model_spec_check: the periodic box vs 2 D dx */
-    if (ms->nx <= 2.0 * ms->dilation)
-      scene_key_error(sc, "model", "nodes", "too few nodes for the support radius");
-    scene_key_error(sc, "model", "length_y",
-                    "the periodic box is not longer than two support radii (2 D dx) in y");
-  }
-  if (st == MFS_EINVAL)
-    cli_die(2, "%s: invalid combination of keys: %s", sc->path, mfs_strerror(st));
-  cli_die(1, "%s: at t = %g s: %s", sc->path, t, mfs_strerror(st));
-}
-
-/* [model] dim = 2: the linear Lagrangian plate of lib/mfs_solver2d.h
- * (anti-plane shear or plane strain, lumped mass). */
-static int run_2d(scene *sc, const char *outpath)
-{
-  int st;
-  size_t bad = 0;
-  mfs_model_spec ms = scene_model_spec(sc);
-  mfs_solver2d *s = mfs_solver2d_alloc(&ms, &st, &bad);
-  if (!s)
-    die_2d(sc, &ms, st, bad, 0.0);
   if (sc->have_dt) {
-    if (mfs_solver2d_set_dt(s, sc->dt, sc->force) != MFS_OK) {
-      double dcrit = s->dt_crit;
-      mfs_solver2d_free(s);
-      refuse_dt(sc, "central-difference", dcrit, central_why);
+    if (in->type->set_dt(in->solver, sc->dt, sc->force) != MFS_OK) {
+      in->type->free(in->solver);
+      scene_key_error(sc, "time", "dt",
+                      "above the %s stability limit %.6g s %s; lower it or set [time] force = 1",
+                      rule, dts, why);
     }
-  } else {
-    mfs_solver2d_set_dt(s, sc->safety * s->dt_crit, 1);
+  } else if (in->type->set_dt(in->solver, sc->safety * dts, 1) != MFS_OK) {
+    die_run(sc, in->type, MFS_EINVAL, 0, 0.0);
   }
+}
 
-  /* initial state on the dofs of `component`: Bloch mode, pulse, centre kick */
-  size_t n = s->n;
-  int comp = sc->component;
-  double lx = ms.lx, ly = ms.ly;
-  double kx = 2.0 * M_PI * sc->mode_x / lx, ky = 2.0 * M_PI * sc->mode_y / ly;
+/* The initial state: random perturbation (1D), Bloch mode (2D), velocity
+ * pulse, centre kick; set on the dofs of `component`. */
+static void initial_state(const scene *sc, mfs_integrator *in, size_t center)
+{
+  mfs_state s;
+  in->type->state(in->solver, &s);
+  size_t n = s.n;
+  int comp = sc->component, disp = s.u != NULL;
   double *u0 = calloc(n, sizeof *u0), *v0 = calloc(n, sizeof *v0);
   if (!u0 || !v0)
     cli_die(1, "out of memory");
+  if (sc->perturbation > 0.0) {
+    gsl_rng *r = gsl_rng_alloc(gsl_rng_mt19937);
+    if (!r)
+      cli_die(1, "out of memory");
+    gsl_rng_set(r, sc->seed);
+    for (size_t I = 0; I < n; I++)
+      u0[I] = sc->perturbation * s.dx * (2.0 * gsl_rng_uniform(r) - 1.0);
+    gsl_rng_free(r);
+  }
+  const mfs_source *src = &sc->spec.disc.source;
+  double lx = src->lx, ly = sc->ly;
+  double kx = 2.0 * M_PI * sc->mode_x / lx, ky = s.dim == 2 ? 2.0 * M_PI * sc->mode_y / ly : 0.0;
   for (size_t i = 0; i < n; i++) {
-    if (s->comp[i] != comp)
+    if (s.comp && s.comp[i] != comp)
       continue;
+    if (s.dim == 1) {
+      if (sc->pulse_amplitude != 0.0)
+        v0[i] = pulse(sc, s.X[i]);
+      continue;
+    }
     if (sc->mode_amplitude != 0.0)
-      u0[i] = sc->mode_amplitude * cos(kx * s->X[i] + ky * s->Y[i]);
+      u0[i] = sc->mode_amplitude * cos(kx * s.X[i] + ky * s.Y[i]);
     if (sc->pulse_amplitude != 0.0) {
-      double dx = s->X[i] - sc->pulse_center, dy = s->Y[i] - sc->pulse_center_y;
-      if (ms.periodic) { /* the nearest image */
+      double dx = s.X[i] - sc->pulse_center, dy = s.Y[i] - sc->pulse_center_y;
+      if (src->periodic) { /* the nearest image */
         dx -= lx * round(dx / lx);
         dy -= ly * round(dy / ly);
       }
       v0[i] = sc->pulse_amplitude * exp(-sc->pulse_alpha * (dx * dx + dy * dy));
     }
   }
-  long dc = mfs_solver2d_dof(s, mfs_solver2d_nearest(s, 0.5 * lx, 0.5 * ly), comp);
-  if (dc < 0) /* the centre particle is never on the boundary (nodes >= 3) */
-    cli_die(1, "%s: no free particle at the centre of the box", sc->path);
-  v0[dc] += sc->center_velocity;
-  if ((st = mfs_solver2d_set_state(s, u0, v0)) != MFS_OK)
-    die_2d(sc, &ms, st, 0, 0.0);
+  v0[center] += sc->center_velocity;
+  mfs_status st = in->type->set_state(in->solver, disp ? u0 : NULL, v0);
+  if (st != MFS_OK)
+    die_run(sc, in->type, st, 0, 0.0);
   free(u0);
   free(v0);
-
-  /* what the probes need: energies; e^{-i k.X} of the mode_amp dofs */
-  int need_energy = 0, need_mode = 0;
-  for (int p = 0; p < sc->nprobes; p++) {
-    int q = sc->probe[p];
-    need_energy |= q == PROBE_KINETIC || q == PROBE_POTENTIAL || q == PROBE_TOTAL ||
-                   q == PROBE_MODIFIED;
-    need_mode |= q == PROBE_MODE_AMP;
-  }
-  double *ec = NULL, *es = NULL;
-  size_t nmode = 0;
-  if (need_mode) {
-    ec = malloc(2 * n * sizeof *ec);
-    if (!ec)
-      cli_die(1, "out of memory");
-    es = ec + n;
-    for (size_t i = 0; i < n; i++) {
-      double ph = kx * s->X[i] + ky * s->Y[i];
-      int on = s->comp[i] == comp;
-      ec[i] = on ? cos(ph) : 0.0;
-      es[i] = on ? -sin(ph) : 0.0;
-      nmode += (size_t)on;
-    }
-  }
-  int ndof = ms.physics == MFS_PHYS_PLANE_STRAIN ? 2 : 1; /* (u_x, u_y) pairs: model->dof */
-
-  cli_out out;
-  cli_out_open(&out, outpath);
-  fputs("t", out.f);
-  for (int p = 0; p < sc->nprobes; p++)
-    fprintf(out.f, ",%s", scene_probe_names[sc->probe[p]]);
-  fputc('\n', out.f);
-  long nsteps = (long)ceil(sc->end / s->dt * (1.0 - 1e-12));
-  int tty = isatty(STDERR_FILENO), shown = -1;
-  for (long k = 0;; k++) {
-    if (k % sc->every == 0 || k == nsteps) {
-      double kin = 0, pot = 0, mod = 0;
-      if (need_energy)
-        mfs_solver2d_energy(s, &kin, &pot, &mod);
-      char b[40];
-      cli_fmt(b, sizeof b, s->t);
-      fputs(b, out.f);
-      for (int p = 0; p < sc->nprobes; p++) {
-        double val = 0.0;
-        switch (sc->probe[p]) {
-        case PROBE_V_CENTER: val = s->v[dc]; break;
-        case PROBE_U_CENTER: val = s->u[dc]; break;
-        case PROBE_KINETIC: val = kin; break;
-        case PROBE_POTENTIAL: val = pot; break;
-        case PROBE_TOTAL: val = kin + pot; break;
-        case PROBE_MODIFIED: val = mod; break;
-        case PROBE_MODE_AMP: {
-          double re = 0.0, im = 0.0;
-          for (size_t i = 0; i < n; i++) {
-            re += s->u[i] * ec[i];
-            im += s->u[i] * es[i];
-          }
-          val = 2.0 * hypot(re, im) / (double)nmode;
-          break;
-        }
-        case PROBE_MAX_V: /* the largest particle speed */
-          for (size_t i = 0; i + (size_t)ndof <= n; i += (size_t)ndof)
-            val = fmax(val, ndof == 2 ? hypot(s->v[i], s->v[i + 1]) : fabs(s->v[i]));
-          break;
-        default: break; /* 1D only: refused by scene_finish */
-        }
-        put(out.f, val);
-      }
-      fputc('\n', out.f);
-    }
-    if (k == nsteps)
-      break;
-    if ((st = mfs_solver2d_step(s, sc->scheme)) != MFS_OK)
-      die_2d(sc, &ms, st, 0, s->t);
-    progress(tty, k, nsteps, &shown);
-  }
-  free(ec);
-  mfs_solver2d_free(s);
-  cli_out_commit(&out);
-  return 0;
 }
+
+/* The point of xq (nq first coordinates) nearest x, the first of ties. */
+static size_t nearest_point(const double *xq, size_t nq, double x)
+{
+  size_t best = 0;
+  for (size_t Q = 0; Q < nq; Q++)
+    if (fabs(xq[Q] - x) < fabs(xq[best] - x))
+      best = Q;
+  return best;
+}
+
+typedef struct {
+  const char *scene;
+  cli_texts sets;
+  const char *out;
+} run_opts;
+
+static const cli_opt opts[] = {
+  {.name = NULL, .type = CLI_TEXT, .arg = "SCENE.ini", .offset = offsetof(run_opts, scene)},
+  {.name = "--set", .type = CLI_TEXTS, .arg = "SECTION.KEY=VALUE",
+   .help = "override a key of the scene (repeatable)", .offset = offsetof(run_opts, sets)},
+  {.name = "-o", .type = CLI_TEXT, .arg = "FILE", .help = "output file (default: standard output)",
+   .offset = offsetof(run_opts, out)},
+  {.type = CLI_END}};
 
 int cmd_run(int argc, char **argv)
 {
-  const char *path = NULL, *outpath = NULL;
-  const char *sets[256];
-  int nsets = 0;
-  for (int i = 1; i < argc; i++) {
-    if (!strcmp(argv[i], "--help") || !strcmp(argv[i], "-h")) {
-      fputs(help, stdout);
-      return 0;
-    } else if (!strcmp(argv[i], "--set") || !strcmp(argv[i], "-o")) {
-      if (i + 1 >= argc)
-        cli_die(2, "%s: missing value", argv[i]);
-      if (!strcmp(argv[i], "-o")) {
-        outpath = argv[++i];
-      } else {
-        if (nsets == 256)
-          cli_die(2, "--set: at most 256");
-        sets[nsets++] = argv[++i];
-      }
-    } else if (argv[i][0] == '-' && argv[i][1]) {
-      cli_die(2, "%s: unknown option; allowed: --set, -o, --help", argv[i]);
-    } else if (!path) {
-      path = argv[i];
-    } else {
-      cli_die(2, "'%s': only one scene file is allowed", argv[i]);
-    }
-  }
-  if (!path)
+  static run_opts o; /* static: the texts table is large */
+  memset(&o, 0, sizeof o);
+  unsigned char seen[4];
+  cli_group g = {opts, &o, seen};
+  cli_parse(argc, argv, usage, about, &g, 1);
+  if (!o.scene)
     cli_die(2, "missing the scene file; usage: mfstab run SCENE.ini [--set S.K=V] [-o FILE]");
   scene sc;
-  scene_load(&sc, path);
-  for (int i = 0; i < nsets; i++)
-    scene_set(&sc, sets[i]);
+  scene_load(&sc, o.scene);
+  for (int i = 0; i < o.sets.n; i++)
+    scene_set(&sc, o.sets.v[i]);
   scene_finish(&sc);
-  if (sc.dim == 2)
-    return run_2d(&sc, outpath);
-  if (sc.stress_velocity)
-    return run_tsph(&sc, outpath);
 
-  int st;
-  size_t bad = 0;
-  mfs_solver *s = mfs_solver_alloc(&sc.spec, &st, &bad);
-  if (!s)
-    die_status(&sc, st, bad, 0.0);
-  if (sc.have_dt) {
-    if (mfs_solver_set_dt(s, sc.dt, sc.force) != MFS_OK) {
-      double dcrit = s->dt_crit;
-      mfs_solver_free(s);
-      refuse_dt(&sc, "central-difference", dcrit, central_why);
-    }
-  } else {
-    mfs_solver_set_dt(s, sc.safety * s->dt_crit, 1);
-  }
+  mfs_integrator in = build(&sc);
+  choose_dt(&sc, &in);
+  const mfs_integrator_type *T = in.type;
+  const mfs_source *src = &sc.spec.disc.source;
+  size_t center = T->nearest(in.solver, 0.5 * src->lx, 0.5 * sc.ly, sc.component);
+  if (center == (size_t)-1) /* the centre particle is never on the boundary (nodes >= 3) */
+    cli_die(1, "%s: no free particle at the centre of the box", sc.path);
+  initial_state(&sc, &in, center);
 
-  /* initial conditions */
-  size_t n = s->n;
-  double *u0 = calloc(n, sizeof *u0), *v0 = calloc(n, sizeof *v0);
-  if (!u0 || !v0)
-    cli_die(1, "out of memory");
-  if (sc.perturbation > 0.0) {
-    gsl_rng *r = gsl_rng_alloc(gsl_rng_mt19937);
-    if (!r)
-      cli_die(1, "out of memory");
-    gsl_rng_set(r, sc.seed);
-    for (size_t I = 0; I < n; I++)
-      u0[I] = sc.perturbation * s->dX * (2.0 * gsl_rng_uniform(r) - 1.0);
-    gsl_rng_free(r);
-  }
-  if (sc.pulse_amplitude != 0.0)
-    for (size_t I = 0; I < n; I++) {
-      double d = s->X[I] - sc.pulse_center;
-      v0[I] = sc.pulse_amplitude * exp(-sc.pulse_alpha * d * d);
-    }
-  size_t ic = mfs_solver_nearest(s, 0.5 * sc.spec.length);
-  v0[ic] += sc.center_velocity;
-  if ((st = mfs_solver_set_state(s, u0, v0)) != MFS_OK)
-    die_status(&sc, st, 0, 0.0);
-  free(u0);
-  free(v0);
-
-  /* what the probes need */
-  int need_energy = 0, need_fields = 0;
-  size_t qend = 0, qcen = 0;
+  mfs_state s;
+  T->state(in.solver, &s);
+  probe_ctx pc = {.sc = &sc, .in = &in, .center = center};
+  int need_energy = 0, need_fields = 0, need_mode = 0;
   for (int p = 0; p < sc.nprobes; p++) {
-    need_energy |= sc.probe[p] == PROBE_KINETIC || sc.probe[p] == PROBE_POTENTIAL ||
-                   sc.probe[p] == PROBE_TOTAL;
-    need_fields |= sc.probe[p] == PROBE_SIGMA_END || sc.probe[p] == PROBE_SIGMA_CENTER;
+    int q = sc.probe[p];
+    need_energy |= q == PROBE_KINETIC || q == PROBE_POTENTIAL || q == PROBE_TOTAL ||
+                   q == PROBE_MODIFIED;
+    need_fields |= q == PROBE_SIGMA_END || q == PROBE_SIGMA_CENTER;
+    need_mode |= q == PROBE_MODE_AMP;
   }
-  for (size_t Q = 0; Q < s->nq; Q++) {
-    if (fabs(s->xq0[Q] - sc.spec.length) < fabs(s->xq0[qend] - sc.spec.length))
-      qend = Q;
-    if (fabs(s->xq0[Q] - 0.5 * sc.spec.length) < fabs(s->xq0[qcen] - 0.5 * sc.spec.length))
-      qcen = Q;
+  if (s.nq > 0) {
+    pc.qend = nearest_point(s.xq, s.nq, src->lx);
+    pc.qcen = nearest_point(s.xq, s.nq, 0.5 * src->lx);
+  }
+  double *ec = NULL;
+  if (need_mode && s.dim == 2) {
+    ec = malloc(2 * s.n * sizeof *ec);
+    if (!ec)
+      cli_die(1, "out of memory");
+    double kx = 2.0 * M_PI * sc.mode_x / src->lx, ky = 2.0 * M_PI * sc.mode_y / sc.ly;
+    for (size_t i = 0; i < s.n; i++) {
+      double ph = kx * s.X[i] + ky * s.Y[i];
+      int on = s.comp[i] == sc.component;
+      ec[i] = on ? cos(ph) : 0.0;
+      ec[s.n + i] = on ? -sin(ph) : 0.0;
+      pc.nmode += (size_t)on;
+    }
+    pc.ec = ec;
+    pc.es = ec + s.n;
   }
 
   cli_out out;
-  cli_out_open(&out, outpath);
+  cli_out_open(&out, o.out);
   fputs("t", out.f);
   for (int p = 0; p < sc.nprobes; p++)
     fprintf(out.f, ",%s", scene_probe_names[sc.probe[p]]);
   fputc('\n', out.f);
-
-  long nsteps = (long)ceil(sc.end / s->dt * (1.0 - 1e-12));
-  int tty = isatty(STDERR_FILENO);
-  int shown = -1;
+  long nsteps = (long)ceil(sc.end / s.dt * (1.0 - 1e-12));
+  int tty = isatty(STDERR_FILENO), shown = -1;
+  mfs_status st;
   for (long k = 0;; k++) {
     if (k % sc.every == 0 || k == nsteps) {
-      double kin = 0, pot = 0;
-      if (need_energy && (st = mfs_solver_energy(s, &kin, &pot)) != MFS_OK)
-        die_status(&sc, st, 0, s->t);
-      if (need_fields && !need_energy && (st = mfs_solver_fields(s)) != MFS_OK)
-        die_status(&sc, st, 0, s->t);
+      if (need_energy && (st = T->energy(in.solver, &pc.kin, &pc.pot, &pc.mod)) != MFS_OK)
+        die_run(&sc, T, st, 0, s.t);
+      if (need_fields && !need_energy && T->fields && (st = T->fields(in.solver)) != MFS_OK)
+        die_run(&sc, T, st, 0, s.t);
+      T->state(in.solver, &s);
       char b[40];
-      cli_fmt(b, sizeof b, s->t);
+      cli_fmt(b, sizeof b, s.t);
       fputs(b, out.f);
       for (int p = 0; p < sc.nprobes; p++) {
-        double val = 0.0;
-        switch (sc.probe[p]) {
-        case PROBE_V_CENTER: val = s->v[ic]; break;
-        case PROBE_U_CENTER: val = s->u[ic]; break;
-        case PROBE_KINETIC: val = kin; break;
-        case PROBE_POTENTIAL: val = pot; break;
-        case PROBE_TOTAL: val = kin + pot; break;
-        case PROBE_SIGMA_END: val = s->sigma[qend]; break;
-        case PROBE_SIGMA_CENTER: val = s->sigma[qcen]; break;
-        case PROBE_MODE_AMP: {
-          double complex z = 0;
-          for (size_t I = 0; I < n; I++)
-            z += s->u[I] * cexp(-1.0 * _Complex_I * M_PI * sc.mode * (double)I);
-          val = 2.0 * cabs(z) / (double)n;
-          break;
-        }
-        case PROBE_MAX_V:
-          for (size_t I = 0; I < n; I++)
-            val = fmax(val, fabs(s->v[I]));
-          break;
-        case PROBE_V_MID:
-          val = sc.spec.periodic ? s->v[ic] : velocity_at(s->v, n, s->dX, 0.5 * sc.spec.length);
-          break;
-        case PROBE_V_ERR:
-          val = velocity_error(&sc, sqrt(sc.spec.modulus / sc.spec.density), s->X, s->v, n, s->t);
-          break;
-        }
-        put(out.f, val);
+        cli_fmt(b, sizeof b, probes[sc.probe[p]](&pc, &s));
+        fputc(',', out.f);
+        fputs(b, out.f);
       }
       fputc('\n', out.f);
     }
     if (k == nsteps)
       break;
-    if ((st = mfs_solver_step(s, sc.scheme)) != MFS_OK)
-      die_status(&sc, st, 0, s->t);
-    if (tty) {
-      int pc = (int)(100 * (k + 1) / nsteps);
-      if (pc != shown) {
-        shown = pc;
-        fprintf(stderr, "\r[%-50.*s] %3d%%", pc / 2,
-                "##################################################", pc);
-        if (k + 1 == nsteps)
-          fputc('\n', stderr);
-      }
+    if ((st = T->step(in.solver, in.scheme)) != MFS_OK) {
+      T->state(in.solver, &s);
+      die_run(&sc, T, st, 0, s.t);
     }
+    progress(tty, k, nsteps, &shown);
   }
-  mfs_solver_free(s);
+  free(ec);
+  T->free(in.solver);
   cli_out_commit(&out);
   return 0;
 }

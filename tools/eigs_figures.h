@@ -19,26 +19,28 @@
  * Returns 0, or 1 after one line on stderr if a model or a file fails. */
 int eigs_figure17(const char *dir);
 
-/* Options shared by eigs and bound. */
+/* The options of a finite model, shared by eigs and bound. */
 typedef struct {
-  cli_disc d;              /* kernel, dilation, shape, quadrature, mass, modulus, density */
-  mfs_model_spec s;        /* the model, filled by eigs_finish */
-  const char *outpath;     /* -o */
-  const char *export_prefix;
-  int zero_modes;          /* --zero-modes */
-  double tol;              /* --tol: zero-mode threshold relative to lambda_max */
-  double poisson;          /* --poisson */
-  int nev, ncv, maxiter;   /* ARPACK controls */
-  double arpack_tol;
-  int fourier_points, fourier_angles;
-  /* raw values, validated once the dimension is known */
-  const char *nodes, *length, *fixed;
-  int periodic, plane_strain;
-} eigs_opts;
+  const char *nodes, *length;
+  int fixed;                  /* none, ends, boundary */
+  int periodic;
+  long fourier_points, fourier_angles;
+  const char *out;
+} model_opts;
 
-/* Parse the command line of eigs (is_eigs = 1) or bound; exits 2 on bad
- * input with one line naming the option. */
-void eigs_parse(int argc, char **argv, const char *help, int is_eigs, eigs_opts *o);
+extern const cli_opt model_opts_table[];
+#define MODEL_NOPTS 8
+
+/* The parsed options of eigs or bound. */
+typedef struct {
+  cli_disc d;
+  model_opts m;
+  mfs_model_spec s;  /* the model */
+} model_cmd;
+
+/* Check the options of a finite model and build its spec (exit 2 with one
+ * line naming the option). */
+void model_finish(model_cmd *c, const cli_group *disc_group, const cli_group *model_group);
 
 /* Column values that both commands write. */
 typedef struct {
@@ -50,11 +52,11 @@ typedef struct {
   double alpha, bound_alpha;      /* eq. 136/146 constant and alpha c^2/h^2 */
 } eigs_derived;
 
-void eigs_derive(const eigs_opts *o, eigs_derived *dv);
+void eigs_derive(const mfs_model_spec *s, eigs_derived *dv);
 
 /* The configuration columns (header and values, no trailing comma). */
 void eigs_config_header(FILE *f);
-void eigs_config_row(FILE *f, const eigs_opts *o, const eigs_derived *dv);
+void eigs_config_row(FILE *f, const mfs_model_spec *s, const eigs_derived *dv);
 
 /* One number into a CSV row; dies (exit 1) rather than write a NaN. */
 void eigs_put(FILE *f, double v, int last);

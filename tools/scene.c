@@ -159,11 +159,9 @@ static mfs_bc parse_bc(const scene *sc, int line, key_id id, const char *v)
 
 /* Whether quadrature rule `name` applies to the lattice of dimension dim
  * (1: line, 2: square). */
-static int quad_applies(const char *name, int dim)
+static int quad_applies(const mfs_quad_type *t, int dim)
 {
-  mfs_quad_rule r;
-  return mfs_quad_rule_parse(name, &r) == MFS_OK &&
-         mfs_quad_rule_check(&r, dim, dim == 1 ? MFS_LATTICE_LINE : MFS_LATTICE_SQUARE) == MFS_OK;
+  return mfs_quad_applies(t, dim, dim == 1 ? MFS_LATTICE_LINE : MFS_LATTICE_SQUARE);
 }
 
 static const char *quad_allowed(int dim)
@@ -213,10 +211,10 @@ static void set_key(scene *sc, int line, key_id id, const char *value)
   case NODES:
     if (l < 3 || l > 100000000)
       key_error(sc, line, k->section, k->name, value, "allowed 3 to 100000000");
-    sp->n = (int)l;
+    sp->disc.source.nx = (int)l;
     break;
-  case LENGTH: sp->length = x; break;
-  case PERIODIC: sp->periodic = (int)l; break;
+  case LENGTH: sp->disc.source.lx = x; break;
+  case PERIODIC: sp->disc.source.periodic = (int)l; break;
   case DIM:
     if (l != 1 && l != 2)
       key_error(sc, line, k->section, k->name, value, "allowed: 1, 2");
@@ -275,15 +273,15 @@ static void set_key(scene *sc, int line, key_id id, const char *value)
   case FLUIDITY: sc->fluidity = x; break;
   case EXPONENT: sc->exponent = x; break;
   case HARDENING: sc->hardening = x; break;
-  case DENSITY: sp->density = x; break;
-  case MODULUS: sp->modulus = x; break;
-  case INITIAL_STRESS: sp->initial_stress = x; break;
+  case DENSITY: sp->disc.material.density = x; break;
+  case MODULUS: sp->disc.material.modulus = x; break;
+  case INITIAL_STRESS: sp->disc.material.initial_stress = x; break;
   case KERNEL:
-    if (!(sp->kernel = mfs_kernel_find(value)))
+    if (!(sp->disc.kernel = mfs_kernel_find(value)))
       key_error(sc, line, k->section, k->name, value,
                 "unknown kernel; allowed: cubic, quartic, wendland2, quintic");
     break;
-  case DILATION: sp->dilation = x; break;
+  case DILATION: sp->disc.dilation = x; break;
   case VISCOSITY: sc->viscosity = x; break;
   case INTERPOLATION:
     if (!strcmp(value, "shepard"))
@@ -294,24 +292,24 @@ static void set_key(scene *sc, int line, key_id id, const char *value)
       key_error(sc, line, k->section, k->name, value, "allowed: shepard, linear");
     break;
   case SHAPE:
-    if (!(sp->shape = mfs_shape_find(value)))
+    if (!(sp->disc.shape = mfs_shape_find(value)))
       key_error(sc, line, k->section, k->name, value,
                 "unknown shape function; allowed: mls, sph, shepard, kb, rl");
     break;
   case FRAME:
     if (!strcmp(value, "eulerian"))
-      sp->frame = MFS_FRAME_EULERIAN;
+      sp->disc.frame = MFS_FRAME_EULERIAN;
     else if (!strcmp(value, "lagrangian"))
-      sp->frame = MFS_FRAME_LAGRANGIAN;
+      sp->disc.frame = MFS_FRAME_LAGRANGIAN;
     else
       key_error(sc, line, k->section, k->name, value, "allowed: eulerian, lagrangian");
     break;
   case QUADRATURE:
     /* a rule of the square lattice only is checked against [model] dim by
      * scene_finish (dim may come later); any other bad rule fails here */
-    if (strlen(value) >= 32 || (!quad_applies(value, 1) && !quad_applies(value, 2)))
+    sp->disc.quadrature = mfs_quad_find(value);
+    if (!quad_applies(sp->disc.quadrature, 1) && !quad_applies(sp->disc.quadrature, 2))
       key_error(sc, line, k->section, k->name, value, "%s", quad_allowed(sc->dim));
-    strcpy(sc->quadrature, value);
     break;
   case EQUILIBRATE: sp->equilibrate = (int)l; break;
   case SKIN: sp->skin = x; break;
@@ -447,14 +445,16 @@ static void defaults(scene *sc, const char *path)
   memset(values, 0, sizeof values);
   sc->path = path;
   mfs_solver_spec *sp = &sc->spec;
-  sp->kernel = &mfs_kernel_quartic;
-  sp->shape = &mfs_shape_mls;
-  sp->dilation = 2.0;
-  sp->frame = MFS_FRAME_LAGRANGIAN;
+  sp->disc = mfs_disc_default();
+  sp->disc.source = (mfs_source){.lattice = MFS_LATTICE_LINE};
+  sp->disc.kernel = &mfs_kernel_quartic;
+  sp->disc.shape = &mfs_shape_mls;
+  sp->disc.dilation = 2.0;
+  sp->disc.frame = MFS_FRAME_LAGRANGIAN;
+  sp->disc.quadrature = &mfs_quad_nodal;
   sp->equilibrate = 1;
   sp->bc[0] = sp->bc[1] = MFS_BC_FIXED;
   sp->bc_until[0] = sp->bc_until[1] = INFINITY;
-  strcpy(sc->quadrature, "nodal");
   sc->seed = 1;
   sc->safety = 0.9;
   sc->scheme = MFS_SCHEME_LEAPFROG;
@@ -538,7 +538,7 @@ static void finish_2d(scene *sc)
   if (sc->stress_velocity)
     scene_key_error(sc, "model", "formulation",
                     "the stress-velocity (TSPH) bar is 1D only; 2D runs are displacement form");
-  if (sp->frame == MFS_FRAME_EULERIAN)
+  if (sp->disc.frame == MFS_FRAME_EULERIAN)
     scene_key_error(sc, "discretization", "frame",
                     "2D runs are Lagrangian only (no 2D Eulerian operator in lib/mfs_solver2d.h)");
   for (size_t i = 0; i < sizeof not_2d / sizeof not_2d[0]; i++)
@@ -548,16 +548,15 @@ static void finish_2d(scene *sc)
   if (sc->tsph)
     scene_key_error(sc, "time", "scheme", "tsph is the 1D stress-velocity bar's scheme; "
                                           "allowed with dim = 2: leapfrog, euler, rk2, rk4");
-  if (!quad_applies(sc->quadrature, 2))
+  if (!quad_applies(sp->disc.quadrature, 2))
     scene_key_error(sc, "discretization", "quadrature", "%s", quad_allowed(2));
-  mfs_quad_rule r;
-  mfs_quad_rule_parse(sc->quadrature, &r);
-  if (r.kind == MFS_QK_VORONOI && sp->periodic && ((sp->n | sc->ny) & 1))
+  if (sp->disc.quadrature->cells == MFS_CELLS_STAR && sp->disc.source.periodic &&
+      ((sp->disc.source.nx | sc->ny) & 1))
     scene_key_error(sc, "discretization", "quadrature",
                     "the star pattern tiles a periodic box only with even nodes and nodes_y");
-  if ((double)sp->n * sc->ny > 1e8)
+  if ((double)sp->disc.source.nx * sc->ny > 1e8)
     scene_key_error(sc, "model", "nodes_y", "at most 100000000 particles (nodes * nodes_y)");
-  if (sp->periodic && values[EDGES][0])
+  if (sp->disc.source.periodic && values[EDGES][0])
     scene_key_error(sc, "boundary", "edges", "no edge conditions on a periodic box "
                                              "([model] periodic = 1)");
   if (sc->physics != MFS_PHYS_PLANE_STRAIN) {
@@ -569,7 +568,7 @@ static void finish_2d(scene *sc)
   }
   if (values[MODE_AMPLITUDE][0] && !sc->have_mode)
     scene_key_error(sc, "initial", "mode_amplitude", "needs [initial] mode_x or mode_y");
-  if (sc->have_mode && !sp->periodic)
+  if (sc->have_mode && !sp->disc.source.periodic)
     scene_key_error(sc, "initial", values[MODE_X][0] ? "mode_x" : "mode_y",
                     "the Bloch mode needs a periodic box ([model] periodic = 1)");
   if (sc->have_dt && values[SAFETY][0])
@@ -595,7 +594,6 @@ void scene_finish(scene *sc)
       cli_die(2, "%s: [%s] %s: missing; this key is required", sc->path, keys[id].section,
               keys[id].name);
   mfs_solver_spec *sp = &sc->spec;
-  sp->quadrature = sc->quadrature;
   if (sc->dim == 2) {
     finish_2d(sc);
     return;
@@ -604,19 +602,20 @@ void scene_finish(scene *sc)
     if (values[only_2d[i]][0])
       scene_key_error(sc, keys[only_2d[i]].section, keys[only_2d[i]].name,
                       "needs [model] dim = 2");
-  if (!quad_applies(sc->quadrature, 1))
+  if (!quad_applies(sp->disc.quadrature, 1))
     scene_key_error(sc, "discretization", "quadrature", "%s", quad_allowed(1));
   for (int p = 0; p < sc->nprobes; p++)
     if (sc->probe[p] == PROBE_MODIFIED)
       scene_key_error(sc, "output", "probes",
                       "modified_energy (the energy the leapfrog conserves on a linear model) "
                       "needs [model] dim = 2");
-  if (sp->periodic && (values[LEFT][0] || values[RIGHT][0]))
+  const int periodic = sp->disc.source.periodic;
+  if (periodic && (values[LEFT][0] || values[RIGHT][0]))
     scene_key_error(sc, "boundary", values[LEFT][0] ? "left" : "right",
                     "no end conditions on a periodic rod ([model] periodic = 1)");
-  if (sp->periodic)
+  if (periodic)
     sp->bc[0] = sp->bc[1] = MFS_BC_FREE;
-  if (sp->initial_stress <= -sp->modulus)
+  if (sp->disc.material.initial_stress <= -sp->disc.material.modulus)
     scene_key_error(sc, "material", "initial_stress",
                     "must be > -modulus (the tangent E + S0 must stay positive)");
   for (int k = 0; k < 2; k++)
@@ -628,9 +627,9 @@ void scene_finish(scene *sc)
   int uses_v_err = 0;
   for (int p = 0; p < sc->nprobes; p++)
     uses_v_err |= sc->probe[p] == PROBE_V_ERR;
-  if (uses_v_err && (sp->periodic || sp->bc[0] != MFS_BC_FREE || sp->bc[1] != MFS_BC_FREE ||
+  if (uses_v_err && (periodic || sp->bc[0] != MFS_BC_FREE || sp->bc[1] != MFS_BC_FREE ||
                      sc->perturbation > 0.0 || sc->center_velocity != 0.0 ||
-                     sp->initial_stress != 0.0 || sc->pulse_amplitude == 0.0))
+                     sp->disc.material.initial_stress != 0.0 || sc->pulse_amplitude == 0.0))
     scene_key_error(sc, "output", "probes",
                     "v_err compares with the d'Alembert solution of a linear rod with free ends "
                     "started by the velocity pulse alone: it needs left = right = free, "
@@ -667,7 +666,7 @@ void scene_finish(scene *sc)
                   : sc->scheme == MFS_SCHEME_RK2 ? MFS_TSPH_RK2
                                                  : MFS_TSPH_RK4;
   if (!values[KERNEL][0])
-    sp->kernel = &mfs_kernel_cubic; /* paper 001 eq. 24 */
+    sp->disc.kernel = &mfs_kernel_cubic; /* paper 001 eq. 24 */
   if ((values[FLUIDITY][0] || values[EXPONENT][0] || values[HARDENING][0]) &&
       !values[YIELD_STRESS][0])
     scene_key_error(sc, "material", values[FLUIDITY][0] ? "fluidity"
@@ -682,45 +681,32 @@ void scene_finish(scene *sc)
 
 mfs_model_spec scene_model_spec(const scene *sc)
 {
-  const mfs_solver_spec *sp = &sc->spec;
-  mfs_model_spec m;
-  mfs_model_spec_default(&m);
-  m.dim = 2;
-  m.nx = sp->n;
-  m.ny = sc->ny;
-  m.lx = sp->length;
-  m.ly = sc->ly;
-  m.periodic = sp->periodic;
-  m.fixed = !sp->periodic && sc->fixed_edges ? MFS_FIX_BOUNDARY : MFS_FIX_NONE;
-  m.kernel = sp->kernel;
-  m.shape = sp->shape;
-  m.dilation = sp->dilation;
-  m.quadrature = sc->quadrature;
-  m.consistent_mass = 0; /* lumped: explicit steps without a solve */
-  m.physics = sc->physics;
-  m.modulus = sp->modulus;
-  m.density = sp->density;
-  m.poisson = sc->poisson;
-  return m;
+  mfs_disc d = sc->spec.disc;
+  d.dim = 2;
+  d.source = (mfs_source){.lattice = MFS_LATTICE_SQUARE,
+                          .nx = sc->spec.disc.source.nx,
+                          .ny = sc->ny,
+                          .lx = sc->spec.disc.source.lx,
+                          .ly = sc->ly,
+                          .periodic = sc->spec.disc.source.periodic};
+  d.consistent_mass = 0; /* lumped: explicit steps without a solve */
+  d.material.physics = sc->physics;
+  d.material.poisson = sc->poisson;
+  return (mfs_model_spec){
+    .disc = d, .fixed = !d.source.periodic && sc->fixed_edges ? MFS_FIX_BOUNDARY : MFS_FIX_NONE};
 }
 
 mfs_tsph_spec scene_tsph_spec(const scene *sc)
 {
   const mfs_solver_spec *sp = &sc->spec;
-  mfs_tsph_spec t = {0};
-  t.n = sp->n;
-  t.length = sp->length;
-  t.density = sp->density;
-  t.modulus = sp->modulus;
-  t.yield_stress = sc->yield_stress;
-  t.fluidity = sc->fluidity;
-  t.exponent = sc->exponent;
-  t.hardening = sc->hardening;
-  t.kernel = sp->kernel;
-  t.dilation = sp->dilation;
-  t.scheme = sc->tscheme;
-  t.linear_interpolation = sc->linear_interpolation;
-  t.viscosity = sc->viscosity;
+  mfs_tsph_spec t = {.disc = sp->disc,
+                     .yield_stress = sc->yield_stress,
+                     .fluidity = sc->fluidity,
+                     .exponent = sc->exponent,
+                     .hardening = sc->hardening,
+                     .scheme = sc->tscheme,
+                     .viscosity = sc->viscosity,
+                     .linear_interpolation = sc->linear_interpolation};
   for (int k = 0; k < 2; k++) {
     t.bc[k] = sp->bc[k];
     t.bc_velocity[k] = sp->bc_velocity[k];

@@ -17,7 +17,6 @@
 typedef struct {
   const char *path;        /* the scene file */
   mfs_solver_spec spec;    /* model, material, discretization, boundary */
-  char quadrature[32];
   /* [model] formulation = stress_velocity: the TSPH bar (lib/mfs_tsph.h) */
   int stress_velocity;
   int linear_interpolation; /* [discretization] interpolation = linear */

@@ -6,13 +6,12 @@
  *
  *   lattice                 mfs_lattice_alloc
  *   quadrature              mfs_quad_alloc
- *   neighbour_search        mfs_grid_alloc + mfs_nlist_build on the quadrature points
- *   shape_tables            the shape-function table over those lists (the rest of
- *                           mfs_plan_alloc, done here with the public API)
+ *   neighbour_search        mfs_plan_alloc, the symbolic plan: cell lists, the neighbour
+ *                           lists of the quadrature points and their transpose
+ *   shape_tables            mfs_plan_tabulate, the numeric plan: the shape-function table
  *   assembly_K              mfs_assemble_stiffness
  *   assembly_lumped_M       mfs_assemble_mass_lumped
  *   total                   the sum of the above; peak_rss_mb is the peak of the library pipeline
- *   plan_alloc              mfs_plan_alloc as a whole (cross-check of the split above)
  *   reference_shape_tables  the same table by a straightforward per-point dense MLS:
  *                           3x3 moment matrix in coordinates relative to the evaluation point,
  *                           inverse by LAPACKE_dgesv (identity right-hand side), explicit
@@ -22,9 +21,8 @@
  * error:  lattice: |sum V - area| / area; quadrature: |sum w - area| / area;
  *         shape_tables: max |sum_J phi_J - 1| and |sum_J grad phi_J| over the points;
  *         assembly_K: |K 1|_inf / max |K_IJ|; assembly_lumped_M: |sum m - rho area| / (rho area);
- *         plan_alloc and reference_*: max abs difference from the shape_tables table.
- * ratio:  reference_*: reference seconds / shape_tables seconds; plan_alloc: its seconds /
- *         (neighbour_search + shape_tables).  Empty on the other rows.
+ *         reference_*: max abs difference from the shape_tables table.
+ * ratio:  reference_*: reference seconds / shape_tables seconds.  Empty on the other rows.
  * seconds is wall-clock time; user_s and sys_s the CPU time of the phase (sys_s is
  * mostly page faults on first touch of new memory).
  *
@@ -109,62 +107,17 @@ static void row(const row_ctx *r, const char *phase, stamp t, double err, double
   fflush(r->f);
 }
 
-/* The shape-function table of pl->nl, as mfs_plan_alloc builds it. */
-static int shape_tables(mfs_plan *pl)
-{
-  const mfs_particles *p = pl->p;
-  const mfs_quad *q = pl->q;
-  const mfs_nlist *nl = pl->nl;
-  int dim = p->dim, st = MFS_ENOMEM;
-  size_t nnz = nl->ptr[q->n], maxrow = 1;
-  double *d = NULL, *v = NULL, *work = NULL;
-  for (size_t Q = 0; Q < q->n; Q++) {
-    size_t len = nl->ptr[Q + 1] - nl->ptr[Q];
-    maxrow = len > maxrow ? len : maxrow;
-  }
-  pl->tab = malloc((nnz ? nnz : 1) * pl->ncomp * sizeof *pl->tab);
-  d = malloc(maxrow * dim * sizeof *d);
-  v = malloc(maxrow * sizeof *v);
-  work = malloc(mfs_shape_work_len(dim, (int)maxrow) * sizeof *work);
-  if (!pl->tab || !d || !v || !work)
-    goto done;
-  for (size_t Q = 0; Q < q->n; Q++) {
-    size_t e0 = nl->ptr[Q];
-    int nn = (int)(nl->ptr[Q + 1] - e0), self = -1;
-    const double *xq = q->x + Q * dim;
-    for (int J = 0; J < nn; J++) {
-      int i = nl->idx[e0 + J];
-      mfs_box_delta(&p->box, xq, p->x + (size_t)i * dim, d + J * dim);
-      v[J] = p->vol[i];
-      if (i == q->node[Q])
-        self = J;
-    }
-    double rc;
-    st = pl->shape->eval(&pl->ctx, nn, d, v, self, pl->order, pl->tab + e0 * pl->ncomp, work, &rc);
-    if (rc < pl->rcond)
-      pl->rcond = rc;
-    if (st != MFS_OK) {
-      pl->bad = Q;
-      goto done;
-    }
-  }
-  st = MFS_OK;
-done:
-  free(d);
-  free(v);
-  free(work);
-  return st;
-}
-
 /* max over points of |sum phi - 1| and |sum grad phi|. */
 static double partition_error(const mfs_plan *pl)
 {
   double e = 0.0;
-  for (size_t Q = 0; Q < pl->nl->nq; Q++) {
+  for (size_t Q = 0; Q < mfs_plan_npoints(pl); Q++) {
     double s[NCOMP] = {-1.0, 0.0, 0.0};
-    for (size_t k = pl->nl->ptr[Q]; k < pl->nl->ptr[Q + 1]; k++)
+    mfs_point pt;
+    mfs_plan_point(pl, Q, &pt);
+    for (size_t k = 0; k < pt.nn; k++)
       for (int c = 0; c < NCOMP; c++)
-        s[c] += pl->tab[k * NCOMP + c];
+        s[c] += pt.phi[k * NCOMP + c];
     for (int c = 0; c < NCOMP; c++)
       e = fabs(s[c]) > e ? fabs(s[c]) : e;
   }
@@ -180,20 +133,24 @@ static double partition_error(const mfs_plan *pl)
  * number of points where dgesv failed. */
 static size_t reference_tables(const mfs_plan *pl, int global, double *out)
 {
-  const mfs_particles *p = pl->p;
-  const mfs_quad *q = pl->q;
-  const mfs_nlist *nl = pl->nl;
-  double a = pl->ctx.a;
+  const mfs_particles *p = mfs_plan_particles(pl);
+  const mfs_quad *q = mfs_plan_quad(pl);
+  const mfs_kernel_type *kernel = mfs_plan_disc(pl)->kernel;
+  const size_t *ptr;
+  const int *idx;
+  const double *tab;
+  mfs_plan_table(pl, &ptr, &idx, &tab);
+  double a = mfs_plan_support(pl);
   size_t nfail = 0;
   for (size_t Q = 0; Q < q->n; Q++) {
     const double *xq = q->x + 2 * Q;
     double o[2] = {global ? xq[0] : 0.0, global ? xq[1] : 0.0}; /* x_Q in the chosen frame */
     double A[9] = {0}, dA[2][9] = {{0}};
-    for (size_t e = nl->ptr[Q]; e < nl->ptr[Q + 1]; e++) {
+    for (size_t e = ptr[Q]; e < ptr[Q + 1]; e++) {
       double d[2];
-      mfs_box_delta(&p->box, xq, p->x + 2 * (size_t)nl->idx[e], d);
+      mfs_box_delta(&p->box, xq, p->x + 2 * (size_t)idx[e], d);
       double pj[3] = {1.0, o[0] + d[0], o[1] + d[1]};
-      mfs_kernel_value kv = mfs_kernel_radial(pl->ctx.kernel, 2, a, hypot(d[0], d[1]));
+      mfs_kernel_value kv = mfs_kernel_radial(kernel, 2, a, hypot(d[0], d[1]));
       double w = kv.W, dw[2] = {-kv.dW_r * d[0], -kv.dW_r * d[1]}; /* d/dx_Q */
       for (int i = 0; i < 3; i++)
         for (int j = 0; j < 3; j++) {
@@ -206,7 +163,7 @@ static size_t reference_tables(const mfs_plan *pl, int global, double *out)
     lapack_int ipiv[3];
     if (LAPACKE_dgesv(LAPACK_ROW_MAJOR, 3, 3, A, 3, ipiv, Ai, 3) != 0) {
       nfail++;
-      for (size_t e = nl->ptr[Q]; e < nl->ptr[Q + 1]; e++)
+      for (size_t e = ptr[Q]; e < ptr[Q + 1]; e++)
         for (int c = 0; c < NCOMP; c++)
           out[e * NCOMP + c] = NAN;
       continue;
@@ -222,11 +179,11 @@ static size_t reference_tables(const mfs_plan *pl, int global, double *out)
       for (int i = 0; i < 3; i++)
         dg[k][i] = Ai[3 * i] * t[0] + Ai[3 * i + 1] * t[1] + Ai[3 * i + 2] * t[2];
     }
-    for (size_t e = nl->ptr[Q]; e < nl->ptr[Q + 1]; e++) {
+    for (size_t e = ptr[Q]; e < ptr[Q + 1]; e++) {
       double d[2];
-      mfs_box_delta(&p->box, xq, p->x + 2 * (size_t)nl->idx[e], d);
+      mfs_box_delta(&p->box, xq, p->x + 2 * (size_t)idx[e], d);
       double pj[3] = {1.0, o[0] + d[0], o[1] + d[1]};
-      mfs_kernel_value kv = mfs_kernel_radial(pl->ctx.kernel, 2, a, hypot(d[0], d[1]));
+      mfs_kernel_value kv = mfs_kernel_radial(kernel, 2, a, hypot(d[0], d[1]));
       double gp = g[0] * pj[0] + g[1] * pj[1] + g[2] * pj[2];
       out[e * NCOMP] = gp * kv.W;
       for (int k = 0; k < 2; k++)
@@ -234,6 +191,7 @@ static size_t reference_tables(const mfs_plan *pl, int global, double *out)
                                  gp * kv.dW_r * d[k];
     }
   }
+  (void)tab;
   return nfail;
 }
 
@@ -251,20 +209,25 @@ static double max_diff(size_t n, const double *x, const double *y)
 /* One size.  Returns 0, or 1 with a message on stderr. */
 static int bench(FILE *f, int n_side, int rep, int checks)
 {
-  int st = MFS_OK, rc = 1;
+  mfs_status st = MFS_OK, rc = 1;
   const char *what = "";
   mfs_particles *p = NULL;
   mfs_quad *q = NULL;
-  mfs_grid *g = NULL;
-  mfs_plan *pl = NULL, *pl2 = NULL;
+  mfs_plan *pl = NULL;
   mfs_csr *K = NULL;
   double *m = NULL, *ones = NULL, *y = NULL, *ref = NULL;
   row_ctx r = {f, n_side, rep, (size_t)n_side * (size_t)n_side, 0};
-  mfs_lattice_spec ls = {2, MFS_LATTICE_SQUARE, n_side, n_side, 1.0, 1.0, 0, MFS_CELLS_QUAD,
-                         0.0, 0};
-  mfs_quad_rule rule;
-  mfs_plan_spec spec = {&mfs_kernel_cubic, &mfs_shape_mls, DILATION, 1, 1e-12};
-  mfs_material mat = {MFS_PHYS_SCALAR, 1.0, 0.0, 1.0};
+  mfs_lattice_spec ls = {.dim = 2,
+                         .lattice = MFS_LATTICE_SQUARE,
+                         .nx = n_side,
+                         .ny = n_side,
+                         .dx = 1.0,
+                         .gamma = 1.0,
+                         .cells = MFS_CELLS_QUAD};
+  mfs_disc disc = mfs_disc_default();
+  disc.dim = 2;
+  disc.dilation = DILATION;
+  mfs_material mat = {.physics = MFS_PHYS_SCALAR, .modulus = 1.0, .density = 1.0};
   double area = (double)(n_side - 1) * (double)(n_side - 1);
 
   stamp t0 = now();
@@ -276,9 +239,8 @@ static int bench(FILE *f, int n_side, int rep, int checks)
   double sv = 0.0;
   for (size_t i = 0; i < p->n; i++)
     sv += p->vol[i];
-  mfs_quad_rule_parse("stress-quad", &rule);
   t0 = now();
-  q = mfs_quad_alloc(&rule, p, &st);
+  q = mfs_quad_alloc(&mfs_quad_stress_quad, p, &st);
   stamp t_quad = since(t0);
   what = "quadrature";
   if (!q)
@@ -291,33 +253,16 @@ static int bench(FILE *f, int n_side, int rep, int checks)
   row(&r, "quadrature", t_quad, fabs(sw - area) / area, -1.0);
   stamp t_total = add(t_lat, t_quad);
 
-  /* the plan, in the two steps of mfs_plan_alloc */
-  st = MFS_ENOMEM;
-  what = "plan";
-  pl = calloc(1, sizeof *pl);
-  if (!pl)
-    goto done;
-  pl->dim = 2;
-  pl->p = p;
-  pl->q = q;
-  pl->shape = spec.shape;
-  pl->order = spec.order;
-  pl->ncomp = mfs_shape_ncomp(2, spec.order);
-  pl->ctx = (mfs_shape_ctx){spec.kernel, 2, spec.dilation * p->dx, spec.rcond_min};
-  pl->rcond = 1.0;
+  /* the plan: symbolic, then numeric */
   t0 = now();
-  g = mfs_grid_alloc(2, p->n, p->x, &p->box, pl->ctx.a, &st);
-  if (g)
-    pl->nl = mfs_nlist_build(g, q->n, q->x, pl->ctx.a, &st);
-  mfs_grid_free(g);
-  g = NULL;
+  pl = mfs_plan_alloc(&disc, p, q, &st);
   stamp t_nb = since(t0);
   what = "neighbour search";
-  if (!pl->nl)
+  if (!pl)
     goto done;
   row(&r, "neighbour_search", t_nb, -1.0, -1.0);
   t0 = now();
-  st = shape_tables(pl);
+  st = mfs_plan_tabulate(pl, 1, NULL);
   stamp t_sh = since(t0);
   what = "shape tables";
   if (st != MFS_OK)
@@ -366,20 +311,11 @@ static int bench(FILE *f, int n_side, int rep, int checks)
   }
 
   /* cross-checks, after the library pipeline's peak */
-  size_t nnz = pl->nl->ptr[q->n];
-  t0 = now();
-  pl2 = mfs_plan_alloc(&spec, p, q, &st, NULL);
-  stamp t_plan = since(t0);
-  what = "mfs_plan_alloc";
-  if (!pl2)
-    goto done;
-  double e_plan = pl2->nl->ptr[q->n] == nnz &&
-                      memcmp(pl2->nl->idx, pl->nl->idx, nnz * sizeof *pl->nl->idx) == 0
-                    ? max_diff(nnz * NCOMP, pl2->tab, pl->tab)
-                    : INFINITY;
-  row(&r, "plan_alloc", t_plan, e_plan, t_plan.wall / (t_nb.wall + t_sh.wall));
-  mfs_plan_free(pl2);
-  pl2 = NULL;
+  size_t nnz = mfs_plan_nnz(pl);
+  const size_t *tptr;
+  const int *tidx;
+  const double *tab;
+  mfs_plan_table(pl, &tptr, &tidx, &tab);
   st = MFS_ENOMEM;
   what = "reference";
   ref = malloc((nnz ? nnz : 1) * NCOMP * sizeof *ref);
@@ -390,7 +326,7 @@ static int bench(FILE *f, int n_side, int rep, int checks)
     size_t nfail = reference_tables(pl, global, ref);
     stamp t_ref = since(t0);
     row(&r, global ? "reference_shape_tables_global" : "reference_shape_tables", t_ref,
-        nfail ? INFINITY : max_diff(nnz * NCOMP, ref, pl->tab), t_ref.wall / t_sh.wall);
+        nfail ? INFINITY : max_diff(nnz * NCOMP, ref, tab), t_ref.wall / t_sh.wall);
   }
   st = MFS_OK;
   rc = 0;
@@ -402,9 +338,7 @@ done:
   free(ones);
   free(y);
   mfs_csr_free(K);
-  mfs_plan_free(pl2);
   mfs_plan_free(pl);
-  mfs_grid_free(g);
   mfs_quad_free(q);
   mfs_particles_free(p);
   return rc;

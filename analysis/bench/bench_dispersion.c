@@ -71,9 +71,11 @@ int main(void)
   double t0 = now();
   mfs_disp_plan *pl[2];
   for (int d = 0; d < 2; d++) {
-    mfs_disp_spec s = {1, MFS_LATTICE_LINE, 1.0, "nodal", &mfs_kernel_quartic, &mfs_shape_mls,
-                       dil[d], MFS_FRAME_EULERIAN, MFS_PHYS_SCALAR, 0.0, 1.0, 0, 0.0};
-    int st;
+    mfs_disp_spec s = {.disc = mfs_disc_default(), .stretch = 1.0};
+    s.disc.kernel = &mfs_kernel_quartic;
+    s.disc.dilation = dil[d];
+    s.disc.frame = MFS_FRAME_EULERIAN;
+    mfs_status st;
     pl[d] = mfs_disp_plan_alloc(&s, &st);
     if (!pl[d])
       return 1;
@@ -113,9 +115,12 @@ int main(void)
   /* 2D */
   const int nth = 8, nk2 = 400;
   t0 = now();
-  mfs_disp_spec s2 = {2, MFS_LATTICE_SQUARE, 1.0, "stress-tri", &mfs_kernel_cubic, &mfs_shape_mls,
-                      2.0, MFS_FRAME_LAGRANGIAN, MFS_PHYS_SCALAR, 0.0, 1.0, 0, 0.0};
-  int st;
+  mfs_disc d2 = mfs_disc_default();
+  d2.dim = 2;
+  d2.source = (mfs_source){.lattice = MFS_LATTICE_SQUARE, .spacing = 1.0, .gamma = 1.0};
+  d2.quadrature = &mfs_quad_stress_tri;
+  mfs_disp_spec s2 = {.disc = d2, .stretch = 1.0};
+  mfs_status st;
   mfs_disp_plan *p2 = mfs_disp_plan_alloc(&s2, &st);
   if (!p2)
     return 1;
@@ -143,12 +148,9 @@ int main(void)
   for (int n = 0; n < sample; n++) {
     int t = n % nth, i = (n * 37) % nk2;
     double th = t * M_PI / 4 / (nth - 1), km = mfs_disp_kappa_max(p2, th), kap = km * i / (nk2 - 1);
-    mfs_stencil_spec ss = {2, MFS_LATTICE_SQUARE, 1.0, 1.0, "stress-tri",
-                           {&mfs_kernel_cubic, &mfs_shape_mls, 2.0, 1, 1e-12},
-                           {MFS_PHYS_SCALAR, 1.0, 0.0, 1.0}, 0};
     mfs_stencil_entry *e;
     size_t ne, bad;
-    mfs_stencil(&ss, &e, &ne, &bad);
+    mfs_stencil(&d2, &e, &ne, &bad);
     double num = 0.0, m = 0.0;
     for (size_t q = 0; q < ne; q++) {
       double ph = kap * M_PI * (e[q].j * cos(th) + e[q].k * sin(th));

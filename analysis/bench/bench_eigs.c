@@ -61,17 +61,16 @@ int main(int argc, char **argv)
     fprintf(stderr, "bench_eigs: NSIDE must be >= 3\n");
     return 2;
   }
-  mfs_model_spec s;
-  mfs_model_spec_default(&s);
-  s.dim = 2;
-  s.nx = s.ny = nside;
-  s.lx = s.ly = 1.0;
-  s.dilation = 2.0;
-  s.quadrature = "gauss2";
+  mfs_model_spec s = mfs_model_spec_default();
+  s.disc.dim = 2;
+  s.disc.source = (mfs_source){
+    .lattice = MFS_LATTICE_SQUARE, .nx = nside, .ny = nside, .lx = 1.0, .ly = 1.0};
+  s.disc.dilation = 2.0;
+  s.disc.quadrature = &mfs_quad_gauss[1];
 
   double t0 = now();
   mfs_bound_result br;
-  int st = mfs_bound_model(&s, &br, NULL);
+  mfs_status st = mfs_bound_model(&s, &br, NULL);
   double bound_s = now() - t0;
   if (st != MFS_OK) {
     fprintf(stderr, "bench_eigs: bound: %s\n", mfs_strerror(st));

@@ -43,12 +43,16 @@ static double peak_rss_mb(void)
 static int run(FILE *f, int n, int steps, mfs_frame frame, double dilation)
 {
   const mfs_scheme scheme = MFS_SCHEME_LEAPFROG;
-  mfs_solver_spec sp = {.n = n, .length = 1.0, .density = 1.0, .modulus = 1.0,
-                        .kernel = &mfs_kernel_quartic, .shape = &mfs_shape_mls,
-                        .dilation = dilation, .frame = frame, .quadrature = "nodal",
-                        .bc = {MFS_BC_FIXED, MFS_BC_FIXED}, .bc_until = {INFINITY, INFINITY},
+  mfs_disc d = mfs_disc_default();
+  d.source = (mfs_source){.lattice = MFS_LATTICE_LINE, .nx = n, .lx = 1.0};
+  d.kernel = &mfs_kernel_quartic;
+  d.dilation = dilation;
+  d.frame = frame;
+  mfs_solver_spec sp = {.disc = d,
+                        .bc = {MFS_BC_FIXED, MFS_BC_FIXED},
+                        .bc_until = {INFINITY, INFINITY},
                         .equilibrate = 1};
-  int st;
+  mfs_status st;
   mfs_solver *s = mfs_solver_alloc(&sp, &st, NULL);
   if (!s)
     return st;
@@ -107,7 +111,7 @@ int main(int argc, char **argv)
   fprintf(f, "particles,scheme,frame,dilation,steps,seconds,particle_steps_per_s,error,"
              "peak_rss_mb\n");
   static const double dil[2] = {1.5, 2.0};
-  int st = MFS_OK;
+  mfs_status st = MFS_OK;
   for (int fr = 0; fr < 2 && st == MFS_OK; fr++)
     for (int d = 0; d < 2 && st == MFS_OK; d++)
       st = run(f, n, steps, fr ? MFS_FRAME_EULERIAN : MFS_FRAME_LAGRANGIAN, dil[d]);

@@ -8,6 +8,7 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "mfs_eval.h"
 #include "mfs_status.h"
 
 /* Largest eigenvalue of a symmetric n x n matrix (n <= 3, row-major, destroyed),
@@ -66,7 +67,7 @@ double mfs_bound_point(int dim, const mfs_material *mat, int nn, const double *t
     *negative = 1;
     return 0.0;
   }
-  if (mat->kind == MFS_PHYS_PLANE_STRAIN && dim == 2) {
+  if (mat->physics == MFS_PHYS_PLANE_STRAIN && dim == 2) {
     /* X = sum_I B_I B_I^T / (phi_I S), strain order (xx, yy, xy) */
     double X[9] = {0};
     for (int J = 0; J < nn; J++) {
@@ -88,7 +89,7 @@ double mfs_bound_point(int dim, const mfs_material *mat, int nn, const double *t
     X[7] = X[5];
     /* D = L L^T (Cholesky, D the plane strain elasticity matrix); the
      * eigenvalues of D X are those of L^T X L */
-    double lam = mat->lambda, mu = mat->modulus, d0 = lam + 2.0 * mu;
+    double lam = mfs_material_lambda(mat), mu = mat->modulus, d0 = lam + 2.0 * mu;
     double L[9] = {0};
     L[0] = sqrt(d0);
     L[3] = lam / L[0];
@@ -148,42 +149,38 @@ static void result_add(mfs_bound_result *r, double lam, int neg, size_t Q, const
     r->negative_phi += mult;
 }
 
-int mfs_bound_plan(const mfs_plan *pl, const mfs_material *mat, const unsigned char *fixed,
-                   mfs_bound_result *r)
+mfs_status mfs_bound_plan(const mfs_plan *pl, const mfs_material *mat,
+                          const unsigned char *fixed, mfs_bound_result *r)
 {
   result_init(r);
-  if (!pl || !mat || pl->ncomp < 1 + pl->dim || !(mat->density > 0.0))
+  if (!pl || !mat || !(mat->density > 0.0))
     return MFS_EINVAL;
-  if (mat->kind == MFS_PHYS_PLANE_STRAIN && pl->dim != 2)
+  const int dim = mfs_plan_particles(pl)->dim;
+  if (mfs_plan_ncomp(pl) < 1 + dim || (mat->physics == MFS_PHYS_PLANE_STRAIN && dim != 2))
     return MFS_EINVAL;
-  const mfs_nlist *nl = pl->nl;
-  size_t maxrow = 1;
-  for (size_t Q = 0; Q < nl->nq; Q++) {
-    size_t len = nl->ptr[Q + 1] - nl->ptr[Q];
-    maxrow = len > maxrow ? len : maxrow;
-  }
   unsigned char *act = NULL;
   if (fixed) {
-    act = malloc(maxrow);
+    act = malloc(mfs_plan_max_neighbours(pl));
     if (!act)
       return MFS_ENOMEM;
   }
-  for (size_t Q = 0; Q < nl->nq; Q++) {
-    size_t e0 = nl->ptr[Q];
-    int nn = (int)(nl->ptr[Q + 1] - e0);
+  size_t nq = mfs_plan_npoints(pl);
+  for (size_t Q = 0; Q < nq; Q++) {
+    mfs_point pt;
+    mfs_plan_point(pl, Q, &pt);
     if (act)
-      for (int J = 0; J < nn; J++)
-        act[J] = !fixed[nl->idx[e0 + (size_t)J]];
+      for (size_t J = 0; J < pt.nn; J++)
+        act[J] = !fixed[pt.idx[J]];
     int neg;
-    double lam = mfs_bound_point(pl->dim, mat, nn, pl->tab + e0 * pl->ncomp, pl->ncomp, act, &neg);
-    result_add(r, lam, neg, Q, pl->q->x + Q * pl->dim, pl->dim, 1);
+    double lam = mfs_bound_point(dim, mat, (int)pt.nn, pt.phi, pt.ncomp, act, &neg);
+    result_add(r, lam, neg, Q, pt.x, dim, 1);
   }
-  r->evaluated = nl->nq;
+  r->evaluated = nq;
   free(act);
   return MFS_OK;
 }
 
-int mfs_bound_of_model(const mfs_model *m, mfs_bound_result *r)
+mfs_status mfs_bound_of_model(const mfs_model *m, mfs_bound_result *r)
 {
   if (!m->pl) {
     result_init(r);
@@ -311,84 +308,74 @@ static int window(int i, int n, int periodic, int B, int *out)
   return m;
 }
 
-int mfs_bound_model(const mfs_model_spec *spec, mfs_bound_result *r, size_t *bad)
+mfs_status mfs_bound_model(const mfs_model_spec *spec, mfs_bound_result *r, size_t *bad)
 {
   result_init(r);
   mfs_particles *p = NULL;
   mfs_quad *q = NULL;
   memo mm = {NULL, 0, 0};
-  int *wx = NULL, *wy = NULL, *nb = NULL;
-  double *d = NULL, *v = NULL, *tab = NULL, *work = NULL;
+  int *wx = NULL, *wy = NULL, *cand = NULL, *nb = NULL;
+  double *tab = NULL;
   unsigned char *act = NULL;
-  int st = mfs_model_geometry(spec, &p, &q);
+  mfs_eval ev = {0};
+  mfs_status st = mfs_model_spec_check(spec, NULL);
+  if (st != MFS_OK)
+    return st;
+  const mfs_disc *disc = &spec->disc;
+  st = mfs_disc_geometry(disc, &p, &q);
   if (st != MFS_OK)
     goto done;
-  int dim = spec->dim;
+  int dim = disc->dim, periodic = disc->source.periodic;
   double dx = p->dx, dy = dim > 1 ? p->dy : 1.0;
-  double a = spec->dilation * dx, a2 = a * a;
-  mfs_material mat = {spec->physics, spec->modulus,
-                      spec->physics == MFS_PHYS_PLANE_STRAIN
-                        ? 2.0 * spec->modulus * spec->poisson / (1.0 - 2.0 * spec->poisson)
-                        : 0.0,
-                      spec->density};
-  mfs_shape_ctx ctx = {spec->kernel, dim, a, spec->rcond_min > 0.0 ? spec->rcond_min : 1e-12};
+  double a = disc->dilation * dx;
   int nx = p->nx, ny = dim > 1 ? p->ny : 1;
   int Bx = (int)ceil(a / dx) + 1, By = dim > 1 ? (int)ceil(a / dy) + 1 : 0;
   size_t wlx = (size_t)(2 * Bx + 2) < (size_t)nx ? (size_t)(2 * Bx + 2) : (size_t)nx;
   size_t wly = dim > 1 ? ((size_t)(2 * By + 2) < (size_t)ny ? (size_t)(2 * By + 2) : (size_t)ny) : 1;
   size_t maxnn = wlx * wly;
   int ncomp = mfs_shape_ncomp(dim, 1);
+  st = mfs_eval_init(&ev, disc, a, 1, &p->box, maxnn);
+  if (st != MFS_OK)
+    goto done;
   st = MFS_ENOMEM;
   wx = malloc((size_t)(2 * Bx + 2 + nx) * sizeof *wx);
   wy = malloc((size_t)(2 * By + 2 + ny) * sizeof *wy);
+  cand = malloc(maxnn * sizeof *cand);
   nb = malloc(maxnn * sizeof *nb);
-  d = malloc(maxnn * dim * sizeof *d);
-  v = malloc(maxnn * sizeof *v);
   tab = malloc(maxnn * ncomp * sizeof *tab);
-  work = malloc(mfs_shape_work_len(dim, (int)maxnn) * sizeof *work);
   act = malloc(maxnn);
-  if (!wx || !wy || !nb || !d || !v || !tab || !work || !act || memo_grow(&mm) != MFS_OK)
+  if (!wx || !wy || !cand || !nb || !tab || !act || memo_grow(&mm) != MFS_OK)
     goto done;
+  const mfs_material mat = disc->material;
   int fixed = spec->fixed != MFS_FIX_NONE;
   for (size_t Q = 0; Q < q->n; Q++) {
     const double *xq = q->x + Q * dim;
     int ix, iy = 0, cx, cy = 0;
     int64_t ux, uy = 0;
-    cell_class((xq[0] - p->box.lo[0]) / dx, nx, spec->periodic, Bx, &ix, &cx, &ux);
+    cell_class((xq[0] - p->box.lo[0]) / dx, nx, periodic, Bx, &ix, &cx, &ux);
     if (dim > 1)
-      cell_class((xq[1] - p->box.lo[1]) / dy, ny, spec->periodic, By, &iy, &cy, &uy);
+      cell_class((xq[1] - p->box.lo[1]) / dy, ny, periodic, By, &iy, &cy, &uy);
     int node = q->node[Q] >= 0;
     memo_entry *e = memo_find(&mm, cx, cy, node, ux, uy);
     if (!e->used) {
-      int mx = window(ix, nx, spec->periodic, Bx, wx);
-      int my = dim > 1 ? window(iy, ny, spec->periodic, By, wy) : 1;
+      int mx = window(ix, nx, periodic, Bx, wx);
+      int my = dim > 1 ? window(iy, ny, periodic, By, wy) : 1;
       if (dim == 1)
         wy[0] = 0;
-      int nn = 0, self = -1;
+      size_t nc = 0;
       for (int b = 0; b < my; b++)
-        for (int c = 0; c < mx; c++) {
-          int J = wy[b] * nx + wx[c];
-          double dj[2];
-          mfs_box_delta(&p->box, xq, p->x + (size_t)J * dim, dj);
-          double r2 = dj[0] * dj[0] + (dim > 1 ? dj[1] * dj[1] : 0.0);
-          if (!(r2 < a2))
-            continue;
-          nb[nn] = J;
-          for (int k = 0; k < dim; k++)
-            d[nn * dim + k] = dj[k];
-          v[nn] = p->vol[J];
-          act[nn] = !(fixed && p->flags[J]);
-          if (J == q->node[Q])
-            self = nn;
-          nn++;
-        }
+        for (int c = 0; c < mx; c++)
+          cand[nc++] = wy[b] * nx + wx[c];
+      int nn;
       double rc;
-      st = spec->shape->eval(&ctx, nn, d, v, self, 1, tab, work, &rc);
+      st = mfs_eval_point(&ev, xq, p->x, p->vol, cand, nc, q->node[Q], nb, tab, &nn, &rc);
       if (st != MFS_OK) {
         if (bad)
           *bad = Q;
         goto done;
       }
+      for (int J = 0; J < nn; J++)
+        act[J] = !(fixed && p->flags[nb[J]]);
       e->used = 1;
       e->cx = cx;
       e->cy = cy;
@@ -408,14 +395,13 @@ int mfs_bound_model(const mfs_model_spec *spec, mfs_bound_result *r, size_t *bad
   }
   st = MFS_OK;
 done:
+  mfs_eval_free(&ev);
   free(mm.e);
   free(wx);
   free(wy);
+  free(cand);
   free(nb);
-  free(d);
-  free(v);
   free(tab);
-  free(work);
   free(act);
   mfs_quad_free(q);
   mfs_particles_free(p);
@@ -491,7 +477,7 @@ double mfs_bound_alpha_continuum(const mfs_kernel_type *k, int dim)
 }
 
 /* Largest real omega^2 over the branches at (kappa, theta); -inf on failure. */
-static double omega2_max(const mfs_disp_plan *pl, double kappa, double theta, int *st)
+static double omega2_max(const mfs_disp_plan *pl, double kappa, double theta, mfs_status *st)
 {
   double complex w[4];
   *st = mfs_disp_omega2(pl, 0.0, kappa, theta, w);
@@ -503,33 +489,26 @@ static double omega2_max(const mfs_disp_plan *pl, double kappa, double theta, in
   return m;
 }
 
-int mfs_bound_fourier(const mfs_model_spec *s, int npts, int nangles, double *lambda,
-                      double *kappa, double *theta)
+mfs_status mfs_bound_fourier(const mfs_model_spec *s, int npts, int nangles, double *lambda,
+                             double *kappa, double *theta)
 {
-  int st = mfs_model_spec_check(s);
+  mfs_status st = mfs_model_spec_check(s, NULL);
   if (st != MFS_OK && st != MFS_ETOOSMALL) /* a small periodic model has a lattice all the same */
     return st;
-  double dx = s->periodic ? s->lx / s->nx : s->lx / (s->nx - 1);
-  double dy = s->dim == 1 ? dx : (s->periodic ? s->ly / s->ny : s->ly / (s->ny - 1));
-  mfs_disp_spec ds = {s->dim,
-                      s->dim == 1 ? MFS_LATTICE_LINE : MFS_LATTICE_SQUARE,
-                      s->dim == 1 ? 1.0 : dy / dx,
-                      s->quadrature,
-                      s->kernel,
-                      s->shape,
-                      s->dilation,
-                      MFS_FRAME_LAGRANGIAN,
-                      s->physics,
-                      s->poisson,
-                      1.0,
-                      s->consistent_mass,
-                      0.0};
+  const mfs_disc *d = &s->disc;
+  double dx = mfs_disc_dx(d);
+  double dy = d->dim == 1 ? dx : mfs_disc_dy(d);
+  /* the infinite lattice of the model's spacings, Lagrangian kernel */
+  mfs_disp_spec ds = {.disc = *d, .stretch = 1.0};
+  ds.disc.source = (mfs_source){
+    .lattice = d->source.lattice, .spacing = 1.0, .gamma = d->dim == 1 ? 1.0 : dy / dx};
+  ds.disc.frame = MFS_FRAME_LAGRANGIAN;
   mfs_disp_plan *pl = mfs_disp_plan_alloc(&ds, &st);
   if (!pl)
     return st;
   if (npts < 2)
     npts = 2;
-  if (s->dim == 1 || nangles < 1)
+  if (d->dim == 1 || nangles < 1)
     nangles = 1;
   double best = -INFINITY, kb = 0.0, tb = 0.0;
   for (int t = 0; t < nangles; t++) {
@@ -572,7 +551,7 @@ int mfs_bound_fourier(const mfs_model_spec *s, int npts, int nangles, double *la
     }
   }
   st = isfinite(best) ? MFS_OK : MFS_EDOMAIN;
-  *lambda = best * s->modulus / s->density / (dx * dx);
+  *lambda = best * d->material.modulus / d->material.density / (dx * dx);
   if (kappa)
     *kappa = kb;
   if (theta)
@@ -580,6 +559,14 @@ int mfs_bound_fourier(const mfs_model_spec *s, int npts, int nangles, double *la
 done:
   mfs_disp_plan_free(pl);
   return st;
+}
+
+double mfs_step_lambda(double lambda_power, double lambda_bound, size_t negative_phi)
+{
+  double lam = 1.05 * lambda_power;
+  if (negative_phi == 0 && lambda_bound > 0.0 && lambda_bound < lam)
+    lam = lambda_bound;
+  return lam > 0.0 && isfinite(lam) ? lam : NAN;
 }
 
 double mfs_dt_crit(double lambda_max)

@@ -50,7 +50,10 @@
 
 #include "mfs_assemble.h"
 #include "mfs_dispersion.h"
+#include "mfs_material.h"
 #include "mfs_model.h"
+#include "mfs_plan.h"
+#include "mfs_status.h"
 
 #ifdef __cplusplus
 extern "C" {
@@ -67,15 +70,16 @@ typedef struct {
 
 /* lambda^Q at one point from its shape-table row: nn neighbours, ncomp
  * components each (mfs_shape.h layout), active[J] != 0 for free neighbours
- * (NULL: all).  dim 1 or 2; mat gives the physics, C and rho.  Sets
+ * (NULL: all).  dim 1 or 2; mat gives the physics, C (mat->modulus), nu and
+ * rho.  Sets
  * *negative to 1 if some phi_J <= 0 or S <= 0.  Returns lambda^Q. */
 double mfs_bound_point(int dim, const mfs_material *mat, int nn, const double *tab, int ncomp,
                        const unsigned char *active, int *negative);
 
 /* The bound from a plan's shape table, O(table size).  fixed: p->n flags
  * (NULL: none fixed).  MFS_OK or MFS_EINVAL. */
-int mfs_bound_plan(const mfs_plan *pl, const mfs_material *mat, const unsigned char *fixed,
-                   mfs_bound_result *r);
+mfs_status mfs_bound_plan(const mfs_plan *pl, const mfs_material *mat,
+                          const unsigned char *fixed, mfs_bound_result *r);
 
 /* The bound of the model a spec describes, without assembling it or storing
  * a shape table: streams over the quadrature points, and evaluates the
@@ -87,10 +91,10 @@ int mfs_bound_plan(const mfs_plan *pl, const mfs_material *mat, const unsigned c
  * only.  Equals mfs_bound_plan on the assembled model up to rounding.
  * Returns MFS_OK, or the statuses of mfs_model_alloc (MFS_ESINGULAR with
  * *bad the failing quadrature point). */
-int mfs_bound_model(const mfs_model_spec *spec, mfs_bound_result *r, size_t *bad);
+mfs_status mfs_bound_model(const mfs_model_spec *spec, mfs_bound_result *r, size_t *bad);
 
 /* The bound of an assembled model (its plan must not have been released). */
-int mfs_bound_of_model(const mfs_model *m, mfs_bound_result *r);
+mfs_status mfs_bound_of_model(const mfs_model *m, mfs_bound_result *r);
 
 /* Closed-form constants, lambda <= alpha c^2 / h^2 with h = a the support radius:
  *   dim 1: alpha = norm_1 max_z w'(z)^2/w(z)           (eq. 136; 12.42 for the cubic spline)
@@ -119,8 +123,17 @@ double mfs_bound_alpha_continuum(const mfs_kernel_type *k, int dim);
  * The wave number where the maximum is attained is returned in *kappa
  * (kappa dx/pi) and *theta (radians), either may be NULL.  Returns MFS_OK,
  * or the statuses of mfs_disp_plan_alloc and mfs_disp_omega2. */
-int mfs_bound_fourier(const mfs_model_spec *spec, int npts, int nangles, double *lambda,
-                      double *kappa, double *theta);
+mfs_status mfs_bound_fourier(const mfs_model_spec *spec, int npts, int nangles, double *lambda,
+                             double *kappa, double *theta);
+
+/* The stable-step rule of the reference solvers: the lambda_max estimate
+ * their step dt_crit = 2 / sqrt(lambda) uses, from a power-iteration
+ * estimate (it converges to lambda_max from below) and the element bound
+ * (proven only where negative_phi == 0, and useless where some phi_I is tiny:
+ * MLS at free ends with nodal integration gives 1e16 times lambda_max):
+ * 1.05 lambda_power, or the proven bound where it is smaller.  NAN when
+ * neither is positive and finite. */
+double mfs_step_lambda(double lambda_power, double lambda_bound, size_t negative_phi);
 
 /* Critical time step of the undamped central difference method,
  * 2 / omega_max = 2 / sqrt(lambda_max) (eq. 120 with xi = 0, eq. 124). */

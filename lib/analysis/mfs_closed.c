@@ -49,6 +49,7 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "mfs_eval.h"
 #include "mfs_status.h"
 
 struct mfs_cf_plan {
@@ -71,7 +72,7 @@ const char *mfs_cf_scheme_name(mfs_cf_scheme s)
   return ((int)s >= 0 && s < MFS_CF_NSCHEMES) ? scheme_names[s] : NULL;
 }
 
-int mfs_cf_scheme_find(const char *name, mfs_cf_scheme *s)
+mfs_status mfs_cf_scheme_find(const char *name, mfs_cf_scheme *s)
 {
   if (!name || !s)
     return MFS_EINVAL;
@@ -97,32 +98,34 @@ void mfs_cf_plan_free(mfs_cf_plan *p)
 }
 
 /* phi, phi', phi'' of particle 0 at the point x: the shape functions of all
- * lattice particles j with |j - x| < D evaluated at x, entry of j = 0.
- * d, out, work: caller's scratch sized for nmax neighbours. */
-static int eval_phi(const mfs_shape_type *shape, const mfs_shape_ctx *ctx, double x, int nmax,
-                    double *d, double *v, double *out, double *work, double *res)
+ * lattice particles j with |j - x| < D evaluated at x (the point
+ * evaluator), entry of j = 0.  xp, cand, idx, out: scratch for nmax
+ * neighbours. */
+static int eval_phi(mfs_eval *ev, double x, int nmax, double *xp, const double *ones, int *cand,
+                    int *idx, double *out, double *res)
 {
   res[0] = res[1] = res[2] = 0.0;
-  double D = ctx->a;
+  double D = ev->ctx.a;
   if (!(fabs(x) < D))
     return MFS_OK; /* particle 0 is not a neighbour of x */
-  int nn = 0, self = -1, zero = -1;
-  for (int j = (int)floor(x - D); j <= (int)ceil(x + D); j++) {
-    double dj = (double)j - x;
-    if (!(fabs(dj) < D) || nn == nmax)
-      continue;
-    if (j == 0)
-      zero = nn;
-    if (dj == 0.0)
-      self = nn;
-    d[nn] = dj;
-    v[nn] = 1.0; /* V_J = dx */
-    nn++;
+  int lo = (int)floor(x - D), hi = (int)ceil(x + D), nc = 0, self = -1;
+  for (int j = lo; j <= hi && nc < nmax; j++) {
+    xp[nc] = (double)j;
+    if ((double)j == x)
+      self = nc;
+    cand[nc] = nc;
+    nc++;
   }
-  double rcond;
-  int st = shape->eval(ctx, nn, d, v, self, 2, out, work, &rcond);
+  int nn; /* volumes V_J = dx */
+  mfs_status st = mfs_eval_point(ev, &x, xp, ones, cand, (size_t)nc, self, idx, out, &nn, NULL);
   if (st != MFS_OK)
     return st;
+  int zero = -1;
+  for (int k = 0; k < nn; k++)
+    if (xp[idx[k]] == 0.0)
+      zero = k;
+  if (zero < 0)
+    return MFS_OK;
   for (int k = 0; k < 3; k++)
     res[k] = out[3 * zero + k];
   return (isfinite(res[0]) && isfinite(res[1]) && isfinite(res[2])) ? MFS_OK : MFS_EDOMAIN;
@@ -151,22 +154,28 @@ static void build_ls_rows(mfs_cf_plan *p)
   }
 }
 
-mfs_cf_plan *mfs_cf_plan_alloc(const mfs_cf_spec *spec, int *status)
+mfs_cf_plan *mfs_cf_plan_alloc(const mfs_cf_spec *spec, mfs_status *status)
 {
-  int st = MFS_OK;
+  mfs_status st = MFS_OK;
   mfs_cf_plan *p = NULL;
-  double *d = NULL, *v = NULL, *out = NULL, *work = NULL;
-  if (!spec || !spec->kernel || !spec->shape || !(spec->dilation > 0.0) ||
-      !isfinite(spec->dilation) || !isfinite(spec->sbar) || !(spec->stretch >= 0.0) ||
-      !isfinite(spec->stretch) || !(spec->beta >= 0.0) || !isfinite(spec->beta)) {
+  double *xp = NULL, *ones = NULL, *out = NULL;
+  int *cand = NULL, *idx = NULL;
+  mfs_eval ev = {0};
+  const mfs_disc *d = spec ? &spec->disc : NULL;
+  if (!spec || !d->kernel || !d->shape || !(d->dilation > 0.0) || !isfinite(d->dilation) ||
+      !isfinite(spec->sbar) || !(spec->stretch >= 0.0) || !isfinite(spec->stretch) ||
+      !(spec->beta >= 0.0) || !isfinite(spec->beta)) {
     st = MFS_EINVAL;
     goto done;
   }
-  if (spec->shape != &mfs_shape_mls && spec->shape != &mfs_shape_sph) {
+  /* the paper's two families: linearly complete MLS (eqs 36-39) and the kernel
+   * itself, phi = V W (eq. 41); not Shepard, nor a corrected gradient */
+  const mfs_shape_type *t = d->shape;
+  if (!t->gradient_is_derivative || (!t->linear_complete && t->partition_of_unity)) {
     st = MFS_ENOTSUP;
     goto done;
   }
-  if (spec->dilation > 1e4) { /* tables of 2D+3 points; keep them sane */
+  if (d->dilation > 1e4) { /* tables of 2D+3 points; keep them sane */
     st = MFS_EINVAL;
     goto done;
   }
@@ -175,7 +184,7 @@ mfs_cf_plan *mfs_cf_plan_alloc(const mfs_cf_spec *spec, int *status)
     st = MFS_ENOMEM;
     goto done;
   }
-  p->D = spec->dilation;
+  p->D = d->dilation;
   p->sbar = spec->sbar;
   p->F = spec->stretch == 0.0 ? 1.0 : spec->stretch;
   p->beta = spec->beta;
@@ -190,31 +199,42 @@ mfs_cf_plan *mfs_cf_plan_alloc(const mfs_cf_spec *spec, int *status)
   p->tm = malloc(3 * p->nm * sizeof *p->tm);
   p->Mrow = malloc((size_t)p->nrow * sizeof *p->Mrow);
   p->Krow = malloc((size_t)p->nrow * sizeof *p->Krow);
-  d = malloc((size_t)nmax * sizeof *d);
-  v = malloc((size_t)nmax * sizeof *v);
+  xp = malloc((size_t)nmax * sizeof *xp);
+  ones = malloc((size_t)nmax * sizeof *ones);
   out = malloc(3 * (size_t)nmax * sizeof *out);
-  work = malloc(mfs_shape_work_len(1, nmax) * sizeof *work);
-  if (!p->xn || !p->xm || !p->tn || !p->tm || !p->Mrow || !p->Krow || !d || !v || !out ||
-      !work) {
+  cand = malloc((size_t)nmax * sizeof *cand);
+  idx = malloc((size_t)nmax * sizeof *idx);
+  if (!p->xn || !p->xm || !p->tn || !p->tm || !p->Mrow || !p->Krow || !xp || !ones || !out ||
+      !cand || !idx) {
     st = MFS_ENOMEM;
     goto done;
   }
-  mfs_shape_ctx ctx = {spec->kernel, 1, p->D, 1e-12};
+  for (int i = 0; i < nmax; i++)
+    ones[i] = 1.0;
+  /* the infinite lattice in units of dx: a = D, rcond threshold 1e-12 */
+  static const mfs_box line = {.dim = 1};
+  mfs_disc dd = *d;
+  dd.dim = 1;
+  dd.rcond_min = 1e-12;
+  if ((st = mfs_eval_init(&ev, &dd, p->D, 2, &line, (size_t)nmax)) != MFS_OK)
+    goto done;
   for (size_t i = 0; i < p->nn && st == MFS_OK; i++) {
     p->xn[i] = (double)((int)i - p->jm);
-    st = eval_phi(spec->shape, &ctx, p->xn[i], nmax, d, v, out, work, p->tn + 3 * i);
+    st = eval_phi(&ev, p->xn[i], nmax, xp, ones, cand, idx, out, p->tn + 3 * i);
   }
   for (size_t i = 0; i < p->nm && st == MFS_OK; i++) {
     p->xm[i] = (double)((int)i - p->jm - 1) + 0.5;
-    st = eval_phi(spec->shape, &ctx, p->xm[i], nmax, d, v, out, work, p->tm + 3 * i);
+    st = eval_phi(&ev, p->xm[i], nmax, xp, ones, cand, idx, out, p->tm + 3 * i);
   }
   if (st == MFS_OK)
     build_ls_rows(p);
 done:
-  free(d);
-  free(v);
+  mfs_eval_free(&ev);
+  free(xp);
+  free(ones);
   free(out);
-  free(work);
+  free(cand);
+  free(idx);
   if (st != MFS_OK) {
     mfs_cf_plan_free(p);
     p = NULL;
@@ -224,7 +244,7 @@ done:
   return p;
 }
 
-int mfs_cf_table(const mfs_cf_plan *p, int midpoints, size_t *n, const double **x,
+mfs_status mfs_cf_table(const mfs_cf_plan *p, int midpoints, size_t *n, const double **x,
                  const double **phi)
 {
   if (!p || !n || !x || !phi)
@@ -259,7 +279,7 @@ static void sums_at(const mfs_cf_plan *p, double t, mfs_cf_sums *s)
   }
 }
 
-int mfs_cf_lattice_sums(const mfs_cf_plan *p, double kappa, mfs_cf_sums *out)
+mfs_status mfs_cf_lattice_sums(const mfs_cf_plan *p, double kappa, mfs_cf_sums *out)
 {
   if (!p || !out || !isfinite(kappa))
     return MFS_EINVAL;
@@ -313,8 +333,8 @@ static double omega2_at(const mfs_cf_plan *p, mfs_cf_scheme sc, double t)
   }
 }
 
-int mfs_cf_omega2(const mfs_cf_plan *p, mfs_cf_scheme s, size_t n, const double *kappa,
-                  double *omega2)
+mfs_status mfs_cf_omega2(const mfs_cf_plan *p, mfs_cf_scheme s, size_t n, const double *kappa,
+                         double *omega2)
 {
   if (!p || (n && (!kappa || !omega2)) || (int)s < 0 || s >= MFS_CF_NSCHEMES)
     return MFS_EINVAL;
@@ -323,7 +343,7 @@ int mfs_cf_omega2(const mfs_cf_plan *p, mfs_cf_scheme s, size_t n, const double 
       return MFS_EINVAL;
   if ((s == MFS_CF_LS_NODAL || s == MFS_CF_LS_NODAL_PRINTED) && (p->sbar != 0.0 || p->F != 1.0))
     return MFS_ENOTSUP;
-  int st = MFS_OK;
+  mfs_status st = MFS_OK;
   for (size_t i = 0; i < n; i++) {
     omega2[i] = omega2_at(p, s, M_PI * kappa[i]);
     if (!isfinite(omega2[i]))

@@ -78,8 +78,10 @@
 
 #include <stddef.h>
 
+#include "mfs_disc.h"
 #include "mfs_kernel.h"
 #include "mfs_shape.h"
+#include "mfs_status.h"
 
 #ifdef __cplusplus
 extern "C" {
@@ -103,26 +105,29 @@ typedef enum {
 const char *mfs_cf_scheme_name(mfs_cf_scheme s);
 
 /* The scheme called `name` in *s; MFS_OK or MFS_EINVAL. */
-int mfs_cf_scheme_find(const char *name, mfs_cf_scheme *s);
+mfs_status mfs_cf_scheme_find(const char *name, mfs_cf_scheme *s);
 
+/* The analysis: the kernel, shape (mls or sph: linearly complete, or the
+ * kernel itself) and dilation of a 1D discretization, plus
+ * the scheme's state.  The rest of disc (source, quadrature, frame, mass,
+ * material) does not enter: the scheme chooses them. */
 typedef struct {
-  const mfs_kernel_type *kernel;
-  const mfs_shape_type *shape; /* &mfs_shape_mls or &mfs_shape_sph */
-  double dilation;             /* D: support radius a = D dx, D > 0 */
-  double sbar;                 /* sigma / C (or S / C^SE, Lagrangian) */
-  double stretch;              /* F > 0; 0 means 1 */
-  double beta;                 /* alpha_s l_c^2 in dx^2, >= 0 (least squares) */
+  mfs_disc disc;
+  double sbar;    /* sigma / C (or S / C^SE, Lagrangian) */
+  double stretch; /* F > 0; 0 means 1 */
+  double beta;    /* alpha_s l_c^2 in dx^2, >= 0 (least squares) */
 } mfs_cf_spec;
 
 typedef struct mfs_cf_plan mfs_cf_plan;
 
 /* Tabulate phi, phi', phi'' at the particles j and the midpoints j + 1/2
- * inside the support, and the lattice rows of the least-squares M and K.
- * On failure returns NULL and sets *status: MFS_EINVAL (NULL kernel or
- * shape, D <= 0 or D > 1e4, non-finite sbar, F < 0, beta < 0), MFS_ENOTSUP (a shape
- * other than mls and sph), MFS_ESINGULAR (a moment matrix with reciprocal
- * condition number below 1e-12, e.g. mls with D <= 1), MFS_ENOMEM. */
-mfs_cf_plan *mfs_cf_plan_alloc(const mfs_cf_spec *spec, int *status);
+ * inside the support (by the point evaluator, mfs_eval.h), and the lattice
+ * rows of the least-squares M and K.  On failure returns NULL and sets
+ * *status: MFS_EINVAL (NULL kernel or shape, D <= 0 or D > 1e4, non-finite
+ * sbar, F < 0, beta < 0), MFS_ENOTSUP (a shape other than mls and sph),
+ * MFS_ESINGULAR (a moment matrix with reciprocal condition number
+ * below 1e-12, e.g. mls with D <= 1), MFS_ENOMEM. */
+mfs_cf_plan *mfs_cf_plan_alloc(const mfs_cf_spec *spec, mfs_status *status);
 
 /* Free a plan; NULL is accepted. */
 void mfs_cf_plan_free(mfs_cf_plan *p);
@@ -132,8 +137,8 @@ void mfs_cf_plan_free(mfs_cf_plan *p);
  * out of range, non-finite kappa); MFS_ENOTSUP (least squares with sbar != 0
  * or F != 1); MFS_EDOMAIN if some omega2 is not finite (least squares where
  * the mass symbol vanishes) -- every entry is still written. */
-int mfs_cf_omega2(const mfs_cf_plan *p, mfs_cf_scheme s, size_t n, const double *kappa,
-                  double *omega2);
+mfs_status mfs_cf_omega2(const mfs_cf_plan *p, mfs_cf_scheme s, size_t n, const double *kappa,
+                         double *omega2);
 
 /* The lattice sums at one wave number (kappa dx / pi), for cross-checks and
  * for other paths; names as in the comment at the top of this file. */
@@ -141,12 +146,12 @@ typedef struct {
   double SM, SS, PM, RS, QM, QS, HM, HS, YS, ZS;
 } mfs_cf_sums;
 
-int mfs_cf_lattice_sums(const mfs_cf_plan *p, double kappa, mfs_cf_sums *out);
+mfs_status mfs_cf_lattice_sums(const mfs_cf_plan *p, double kappa, mfs_cf_sums *out);
 
 /* The tabulated shape function: n points x[i] (in dx; particles j if
  * midpoints == 0, else j + 1/2), ascending and symmetric about 0, and
  * phi[3 i + 0..2] = phi, phi', phi'' there.  Pointers are into the plan. */
-int mfs_cf_table(const mfs_cf_plan *p, int midpoints, size_t *n, const double **x,
+mfs_status mfs_cf_table(const mfs_cf_plan *p, int midpoints, size_t *n, const double **x,
                  const double **phi);
 
 #ifdef __cplusplus

@@ -29,40 +29,33 @@
 #include <stddef.h>
 
 #include "mfs_assemble.h"
+#include "mfs_disc.h"
+#include "mfs_status.h"
 
 #ifdef __cplusplus
 extern "C" {
 #endif
 
-/* Kernel frames: Lagrangian; Eulerian as linearized by the paper (eq. 71:
- * phi_I moves rigidly with particle I); Eulerian, consistent: the exact
- * linearization of shape functions re-evaluated in current coordinates,
- * including the dependence of phi_I(x) on every neighbour's position
- * (1D; docs/errata.md E2). */
-typedef enum { MFS_FRAME_LAGRANGIAN, MFS_FRAME_EULERIAN, MFS_FRAME_EULERIAN_CONSISTENT } mfs_frame;
-
+/* The analysis: the discretization d (an infinite lattice: d.source.lattice
+ * and, for the square lattice, d.source.gamma; the spacing, modulus and
+ * density are normalized to 1, so d.source.spacing and d.material.modulus
+ * and density do not enter; d.material.poisson does for plane strain),
+ * plus the pre-stretch and the least-squares stabilization. */
 typedef struct {
-  int dim;                  /* 1 or 2 */
-  mfs_lattice_kind lattice; /* line, square, hex */
-  double gamma;             /* dy/dx of the square lattice (1 if 0) */
-  const char *quadrature;   /* rule name (mfs_quad.h) */
-  const mfs_kernel_type *kernel;
-  const mfs_shape_type *shape;
-  double dilation;
-  mfs_frame frame;
-  mfs_physics_kind physics; /* scalar (bar / anti-plane) or plane strain */
-  double poisson;           /* plane strain */
-  double stretch;           /* pre-stretch F of the Eulerian 1D analysis (1 if 0) */
-  int consistent_mass;
-  double ls_beta;           /* least-squares stabilization beta in dx^2 (0: none) */
+  mfs_disc disc;
+  double stretch; /* pre-stretch F of the Eulerian 1D analysis (1 if 0) */
+  double ls_beta; /* least-squares stabilization beta in dx^2 (0: none) */
 } mfs_disp_spec;
 
 typedef struct mfs_disp_plan mfs_disp_plan;
 
 /* Build the unit-cell operators.  NULL with *status on failure
  * (MFS_ESINGULAR: singular moment matrix; MFS_ENOTSUP: a combination the
- * analysis does not cover; MFS_EINVAL). */
-mfs_disp_plan *mfs_disp_plan_alloc(const mfs_disp_spec *spec, int *status);
+ * analysis does not cover: plane strain with least squares or a stretch,
+ * the consistent frame outside 1D, for a shape without position derivatives
+ * (mfs_shape_type.dpos_1d), or with a stretch for a shape that is not
+ * linearly complete; MFS_EINVAL; MFS_ENOMEM). */
+mfs_disp_plan *mfs_disp_plan_alloc(const mfs_disp_spec *spec, mfs_status *status);
 void mfs_disp_plan_free(mfs_disp_plan *pl);
 
 /* Number of branches (unit-cell particles times degrees of freedom). */
@@ -78,12 +71,15 @@ int mfs_disp_is_reciprocal(const mfs_disp_plan *pl, const double *k, double tol)
  * omega2 holds mfs_disp_branches() complex values; they are real for the
  * symmetric operators (Lagrangian) and may be complex otherwise.
  * Returns MFS_OK, MFS_ELAPACK, or MFS_EDOMAIN if the mass symbol is singular. */
-int mfs_disp_omega2(const mfs_disp_plan *pl, double sbar, double kappa, double theta,
-                    double _Complex *omega2);
+mfs_status mfs_disp_omega2(const mfs_disp_plan *pl, double sbar, double kappa, double theta,
+                           double _Complex *omega2);
 
 /* Symbols at one wave vector, for checks: K(k) and M(k), nb x nb row-major. */
-int mfs_disp_symbols(const mfs_disp_plan *pl, double sbar, const double *k, double _Complex *K,
-                     double _Complex *M);
+mfs_status mfs_disp_symbols(const mfs_disp_plan *pl, double sbar, const double *k,
+                            double _Complex *K, double _Complex *M);
+
+/* The spec the plan was built from. */
+const mfs_disp_spec *mfs_disp_plan_spec(const mfs_disp_plan *pl);
 
 /* The maximum wave number kappa dx / pi on the first Brillouin zone boundary
  * in direction theta: 1 along a lattice axis of the square lattice,

@@ -187,7 +187,7 @@ static int chol_factor(chol_solver *s, const mfs_csr *A, const mfs_csr *B, const
 {
   cholmod_common *c = &s->c;
   cholmod_sparse *Au = upper_of(A, c), *Bu = NULL, *F = NULL;
-  int st = MFS_ENOMEM;
+  mfs_status st = MFS_ENOMEM;
   if (!Au)
     goto done;
   if (B || Bdiag) {
@@ -269,7 +269,7 @@ static int arpack_run(arpack_job *j, mfs_eig_info *info)
 {
   int n = j->n, nev = j->nev, ncv = j->ncv, ldv = n, lworkl = ncv * (ncv + 8);
   int ido = 0, ainfo = 1, iparam[11] = {0}, ipntr[14] = {0};
-  int st = MFS_ENOMEM;
+  mfs_status st = MFS_ENOMEM;
   double *resid = malloc((size_t)n * sizeof *resid);
   double *v = malloc((size_t)n * (size_t)ncv * sizeof *v);
   double *workd = malloc(3 * (size_t)n * sizeof *workd);
@@ -503,7 +503,7 @@ static double pair_residual(const mfs_pencil *P, double lambda, double ref, cons
   return isfinite(r) ? r : INFINITY;
 }
 
-int mfs_eig_max(const mfs_pencil *P, const mfs_eig_opts *opts, double *lambda, double *v,
+mfs_status mfs_eig_max(const mfs_pencil *P, const mfs_eig_opts *opts, double *lambda, double *v,
                 mfs_eig_info *info)
 {
   info_reset(info);
@@ -647,7 +647,7 @@ static int append_mode(const mfs_pencil *P, size_t n, size_t *k, double *Z, doub
   return MFS_OK;
 }
 
-int mfs_eig_zero_modes(const mfs_pencil *P, double lambda_max, const mfs_zero_opts *zo,
+mfs_status mfs_eig_zero_modes(const mfs_pencil *P, double lambda_max, const mfs_zero_opts *zo,
                        const mfs_eig_opts *opts, mfs_zero_modes *out, mfs_eig_info *info)
 {
   info_reset(info);
@@ -789,7 +789,7 @@ int mfs_eig_is_null(const mfs_pencil *P, const double *r, double lambda_max, dou
 /* ------------------------------------------------------------------ */
 /* dense cross-check                                                   */
 
-int mfs_eig_dense(const mfs_pencil *P, double *w)
+mfs_status mfs_eig_dense(const mfs_pencil *P, double *w)
 {
   int st = pencil_check(P);
   if (st != MFS_OK)

@@ -44,6 +44,7 @@
 #include <stddef.h>
 
 #include "mfs_csr.h"
+#include "mfs_status.h"
 
 #ifdef __cplusplus
 extern "C" {
@@ -86,7 +87,7 @@ typedef struct {
  * (ARPACK stopped at maxiter: info->info = 1, info->nconv converged);
  * MFS_EARPACK (other ARPACK error, code in info->info); MFS_EDOMAIN (M not
  * positive definite: CHOLMOD status in info); MFS_ENOMEM.  info may be NULL. */
-int mfs_eig_max(const mfs_pencil *P, const mfs_eig_opts *opts, double *lambda, double *v,
+mfs_status mfs_eig_max(const mfs_pencil *P, const mfs_eig_opts *opts, double *lambda, double *v,
                 mfs_eig_info *info);
 
 /* Zero-energy modes.  Counts the eigenvalues lambda <= tol * lambda_max
@@ -113,7 +114,7 @@ typedef struct {
   int want_modes;   /* keep the modes in out->modes (free with free()) */
 } mfs_zero_opts;
 
-int mfs_eig_zero_modes(const mfs_pencil *P, double lambda_max, const mfs_zero_opts *zopts,
+mfs_status mfs_eig_zero_modes(const mfs_pencil *P, double lambda_max, const mfs_zero_opts *zopts,
                        const mfs_eig_opts *opts, mfs_zero_modes *out, mfs_eig_info *info);
 
 /* Whether the field r (length n) is a zero-energy mode of the pencil:
@@ -129,7 +130,7 @@ int mfs_eig_is_null(const mfs_pencil *P, const double *r, double lambda_max, dou
  * copies (O(n^2) memory, O(n^3) time).  MFS_EINVAL for n > MFS_EIG_DENSE_MAX
  * or a bad pencil; MFS_EDOMAIN if M is not positive definite; MFS_ELAPACK;
  * MFS_ENOMEM. */
-int mfs_eig_dense(const mfs_pencil *P, double *w);
+mfs_status mfs_eig_dense(const mfs_pencil *P, double *w);
 
 #ifdef __cplusplus
 }

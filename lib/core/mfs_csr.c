@@ -64,7 +64,7 @@ double mfs_csr_asymmetry(const mfs_csr *A, double *amax)
   return d;
 }
 
-int mfs_csr_write_mtx(const mfs_csr *A, FILE *f)
+mfs_status mfs_csr_write_mtx(const mfs_csr *A, FILE *f)
 {
   if (fprintf(f, "%%%%MatrixMarket matrix coordinate real general\n%zu %zu %zu\n", A->nrow,
               A->ncol, A->ptr[A->nrow]) < 0)

@@ -5,6 +5,7 @@
 
 #include <stddef.h>
 #include <stdio.h>
+#include "mfs_status.h"
 
 #ifdef __cplusplus
 extern "C" {
@@ -31,7 +32,7 @@ double mfs_csr_get(const mfs_csr *A, size_t i, int j);
 double mfs_csr_asymmetry(const mfs_csr *A, double *amax);
 
 /* Write in Matrix Market coordinate real general format. Returns MFS_OK or MFS_EIO. */
-int mfs_csr_write_mtx(const mfs_csr *A, FILE *f);
+mfs_status mfs_csr_write_mtx(const mfs_csr *A, FILE *f);
 
 #ifdef __cplusplus
 }

@@ -11,11 +11,27 @@
 extern "C" {
 #endif
 
+/* The built-in kernels, one X(name) each.  Their formulas are the static
+ * inline functions mfs_kernel_<name>_w below (w, w', w'' at z in [0, 1],
+ * zero beyond), which the table entries mfs_kernel_<name> call, and which
+ * hot loops can specialize on (mfs_shape.c).  Adding a kernel: a line here,
+ * its inline formula, its table in mfs_kernel.c. */
+#define MFS_KERNEL_LIST(X) X(cubic) X(quartic) X(wendland2) X(quintic)
+
+enum {
+  MFS_KERNEL_ID_NONE = 0, /* a kernel defined elsewhere */
+#define MFS_X_ID(name) MFS_KERNEL_ID_##name,
+  MFS_KERNEL_LIST(MFS_X_ID)
+#undef MFS_X_ID
+  MFS_KERNEL_NIDS
+};
+
 typedef struct {
   const char *name;
   /* w(z), w'(z), w''(z) for z in [0, 1]; zero for z >= 1. */
   void (*eval)(double z, double *w, double *dw, double *d2w);
   double norm[3]; /* normalization constants for d = 1, 2, 3 */
+  int id;         /* MFS_KERNEL_ID_<name> of a built-in kernel, 0 for another */
 } mfs_kernel_type;
 
 extern const mfs_kernel_type mfs_kernel_cubic;     /* cubic B-spline (DESIGN.md) */
@@ -23,14 +39,68 @@ extern const mfs_kernel_type mfs_kernel_quartic;   /* 1 - 6z^2 + 8z^3 - 3z^4 */
 extern const mfs_kernel_type mfs_kernel_wendland2; /* Wendland C2: (1-z)^4 (1+4z) */
 extern const mfs_kernel_type mfs_kernel_quintic;   /* quintic spline, q = 3z */
 
-/* The quartic spline on z < 1, inline for hot loops that special-case it
- * (the table entry mfs_kernel_quartic evaluates the same expression). */
+/* The quartic spline on z < 1. */
 static inline void mfs_kernel_quartic_poly(double z, double *w, double *dw, double *d2w)
 {
   double z2 = z * z;
   *w = 1.0 - 6.0 * z2 + 8.0 * z2 * z - 3.0 * z2 * z2;
   *dw = -12.0 * z + 24.0 * z2 - 12.0 * z2 * z;
   *d2w = -12.0 + 48.0 * z - 36.0 * z2;
+}
+
+static inline void mfs_kernel_cubic_w(double z, double *w, double *dw, double *d2w)
+{
+  if (z <= 0.5) {
+    *w = 2.0 / 3.0 - 4.0 * z * z + 4.0 * z * z * z;
+    *dw = -8.0 * z + 12.0 * z * z;
+    *d2w = -8.0 + 24.0 * z;
+  } else if (z < 1.0) {
+    double u = 1.0 - z;
+    *w = 4.0 / 3.0 * u * u * u;
+    *dw = -4.0 * u * u;
+    *d2w = 8.0 * u;
+  } else {
+    *w = *dw = *d2w = 0.0;
+  }
+}
+
+static inline void mfs_kernel_quartic_w(double z, double *w, double *dw, double *d2w)
+{
+  if (z < 1.0)
+    mfs_kernel_quartic_poly(z, w, dw, d2w);
+  else
+    *w = *dw = *d2w = 0.0;
+}
+
+static inline void mfs_kernel_wendland2_w(double z, double *w, double *dw, double *d2w)
+{
+  if (z < 1.0) {
+    double u = 1.0 - z, u2 = u * u;
+    *w = u2 * u2 * (1.0 + 4.0 * z);
+    *dw = -20.0 * z * u2 * u;
+    *d2w = -20.0 * u2 * (1.0 - 4.0 * z);
+  } else {
+    *w = *dw = *d2w = 0.0;
+  }
+}
+
+/* Morris' quintic spline in q = 3z: sum of c_i (s_i - q)^5_+ */
+static inline void mfs_kernel_quintic_w(double z, double *w, double *dw, double *d2w)
+{
+  static const double s[3] = {3.0, 2.0, 1.0}, c[3] = {1.0, -6.0, 15.0};
+  double q = 3.0 * z, W = 0.0, dW = 0.0, d2W = 0.0;
+  for (int i = 0; i < 3; i++) {
+    double u = s[i] - q;
+    if (u <= 0.0)
+      continue;
+    double u2 = u * u;
+    W += c[i] * u2 * u2 * u;
+    dW -= 5.0 * c[i] * u2 * u2;
+    d2W += 20.0 * c[i] * u2 * u;
+  }
+  *w = W;
+  *dw = 3.0 * dW;
+  *d2w = 9.0 * d2W;
 }
 
 /* NULL-terminated list of all kernels, for lookup by name. */

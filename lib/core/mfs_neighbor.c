@@ -41,9 +41,9 @@ static size_t cell_of(const mfs_grid *g, const double *x)
 }
 
 mfs_grid *mfs_grid_alloc(int dim, size_t n, const double *x, const mfs_box *box, double radius,
-                         int *status)
+                         mfs_status *status)
 {
-  int st = MFS_EINVAL;
+  mfs_status st = MFS_EINVAL;
   mfs_grid *g = NULL;
   if (!(radius > 0.0) || dim < 1 || dim > 3)
     goto fail;
@@ -203,9 +203,9 @@ static int reserve(mfs_nlist *nl, size_t nnz, size_t more, size_t *cap)
 
 /* The cells along direction 0 are scanned in runs of consecutive cells,
  * whose items are contiguous in g->item. */
-mfs_nlist *mfs_nlist_build(const mfs_grid *g, size_t nq, const double *xq, double r, int *status)
+mfs_nlist *mfs_nlist_build(const mfs_grid *g, size_t nq, const double *xq, double r, mfs_status *status)
 {
-  int st = MFS_EINVAL;
+  mfs_status st = MFS_EINVAL;
   mfs_nlist *nl = NULL;
   if (!(r > 0.0) || r > g->radius)
     goto fail;
@@ -269,7 +269,7 @@ fail:
   return NULL;
 }
 
-mfs_nlist *mfs_nlist_transpose(const mfs_nlist *nl, size_t n, int *status)
+mfs_nlist *mfs_nlist_transpose(const mfs_nlist *nl, size_t n, mfs_status *status)
 {
   mfs_nlist *t = calloc(1, sizeof *t);
   size_t nnz = nl->ptr[nl->nq];

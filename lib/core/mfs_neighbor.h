@@ -7,6 +7,7 @@
 #include <stddef.h>
 
 #include "mfs_particles.h"
+#include "mfs_status.h"
 
 #ifdef __cplusplus
 extern "C" {
@@ -29,7 +30,7 @@ typedef struct {
  * NULL with *status = MFS_ETOOSMALL when a periodic box is not larger than
  * twice the radius, MFS_EINVAL for radius <= 0, MFS_ENOMEM. */
 mfs_grid *mfs_grid_alloc(int dim, size_t n, const double *x, const mfs_box *box, double radius,
-                         int *status);
+                         mfs_status *status);
 void mfs_grid_free(mfs_grid *g);
 
 /* Neighbour lists in compressed rows: the points within distance < radius of
@@ -42,11 +43,11 @@ typedef struct {
 
 /* Lists for nq query points xq (nq*dim), radius r <= g->radius.
  * Within a row, indices are in increasing order. */
-mfs_nlist *mfs_nlist_build(const mfs_grid *g, size_t nq, const double *xq, double r, int *status);
+mfs_nlist *mfs_nlist_build(const mfs_grid *g, size_t nq, const double *xq, double r, mfs_status *status);
 void mfs_nlist_free(mfs_nlist *nl);
 
 /* The transpose: for each of n points, the queries whose lists hold it. */
-mfs_nlist *mfs_nlist_transpose(const mfs_nlist *nl, size_t n, int *status);
+mfs_nlist *mfs_nlist_transpose(const mfs_nlist *nl, size_t n, mfs_status *status);
 
 #ifdef __cplusplus
 }

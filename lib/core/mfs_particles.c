@@ -176,7 +176,7 @@ static int perturb(mfs_particles *p, double frac, unsigned long seed)
   return MFS_OK;
 }
 
-mfs_particles *mfs_lattice_alloc(const mfs_lattice_spec *s, int *status)
+mfs_particles *mfs_lattice_alloc(const mfs_lattice_spec *s, mfs_status *status)
 {
   int st = check_spec(s);
   mfs_particles *p = NULL;

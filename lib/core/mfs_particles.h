@@ -6,6 +6,7 @@
 
 #include <math.h>
 #include <stddef.h>
+#include "mfs_status.h"
 
 #ifdef __cplusplus
 extern "C" {
@@ -39,6 +40,23 @@ static inline void mfs_box_delta(const mfs_box *box, const double *a, const doub
     }
     d[k] = t;
   }
+}
+
+/* The same in 1D, b - a with the minimum image: equal to mfs_box_delta for
+ * |b - a| < 1.5 L, without its division and nearbyint (hot loops). */
+static inline double mfs_box_delta1(const mfs_box *box, double a, double b)
+{
+  double t = b - a;
+  if (box->periodic) {
+    double L = box->hi[0] - box->lo[0];
+    if (fabs(t) >= 1.5 * L)
+      t -= L * nearbyint(t / L);
+    else if (t > 0.5 * L)
+      t -= L;
+    else if (t < -0.5 * L)
+      t += L;
+  }
+  return t;
 }
 
 /* What to build. */
@@ -76,7 +94,7 @@ typedef struct {
 
 /* Build a lattice.  Returns NULL and sets *status (MFS_EINVAL for a bad
  * spec, MFS_ENOMEM) on failure. */
-mfs_particles *mfs_lattice_alloc(const mfs_lattice_spec *spec, int *status);
+mfs_particles *mfs_lattice_alloc(const mfs_lattice_spec *spec, mfs_status *status);
 void mfs_particles_free(mfs_particles *p);
 
 /* Measure (length or area) of cell c, from its vertex coordinates. */

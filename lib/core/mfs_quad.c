@@ -1,45 +1,64 @@
 #include "mfs_quad.h"
 
 #include <gsl/gsl_integration.h>
-#include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 
 #include "mfs_status.h"
 #include "mfs_voronoi.h"
 
-static const mfs_quad_rule rules[] = {
-  {"nodal", MFS_QK_NODAL, 0, -1, MFS_CELLS_QUAD, 0},
-  {"stress", MFS_QK_HALF, 1, -1, MFS_CELLS_QUAD, 0},
-  {"stress-quad", MFS_QK_HALF, 2, MFS_LATTICE_SQUARE, MFS_CELLS_QUAD, 0},
-  {"stress-tri", MFS_QK_THIRD, 2, MFS_LATTICE_SQUARE, MFS_CELLS_TRI, 0},
-  {"stress-star", MFS_QK_VORONOI, 2, MFS_LATTICE_SQUARE, MFS_CELLS_STAR, 0},
-  {"stress-hex", MFS_QK_THIRD, 2, MFS_LATTICE_HEX, MFS_CELLS_TRI, 0},
-};
+#define D1 (1u << 1)
+#define D2 (1u << 2)
+#define LINE (1u << MFS_LATTICE_LINE)
+#define SQUARE (1u << MFS_LATTICE_SQUARE)
+#define HEX (1u << MFS_LATTICE_HEX)
 
-int mfs_quad_rule_parse(const char *name, mfs_quad_rule *rule)
+const mfs_quad_type mfs_quad_nodal = {
+  .name = "nodal", .dims = D1 | D2, .lattices = LINE | SQUARE | HEX, .cells = MFS_CELLS_QUAD,
+  .node_share = 1.0};
+const mfs_quad_type mfs_quad_stress = {
+  .name = "stress", .dims = D1, .lattices = LINE, .cells = MFS_CELLS_QUAD, .node_share = 0.5,
+  .centres = 1};
+const mfs_quad_type mfs_quad_stress_quad = {
+  .name = "stress-quad", .dims = D2, .lattices = SQUARE, .cells = MFS_CELLS_QUAD,
+  .node_share = 0.5, .centres = 1};
+const mfs_quad_type mfs_quad_stress_tri = {
+  .name = "stress-tri", .dims = D2, .lattices = SQUARE, .cells = MFS_CELLS_TRI,
+  .node_share = 1.0 / 3.0, .centres = 1};
+const mfs_quad_type mfs_quad_stress_star = {
+  .name = "stress-star", .dims = D2, .lattices = SQUARE, .cells = MFS_CELLS_STAR,
+  .node_share = 1.0, .centres = 1, .voronoi = 1};
+const mfs_quad_type mfs_quad_stress_hex = {
+  .name = "stress-hex", .dims = D2, .lattices = HEX, .cells = MFS_CELLS_TRI,
+  .node_share = 1.0 / 3.0, .centres = 1};
+
+#define GAUSS(n)                                                                             \
+  {.name = "gauss" #n, .dims = D1 | D2, .lattices = LINE | SQUARE | HEX,                    \
+   .cells = MFS_CELLS_QUAD, .gauss_n = n}
+const mfs_quad_type mfs_quad_gauss[10] = {GAUSS(1), GAUSS(2), GAUSS(3), GAUSS(4), GAUSS(5),
+                                          GAUSS(6), GAUSS(7), GAUSS(8), GAUSS(9), GAUSS(10)};
+#undef GAUSS
+
+const mfs_quad_type *const mfs_quad_types[] = {
+  &mfs_quad_nodal,     &mfs_quad_stress,    &mfs_quad_stress_quad, &mfs_quad_stress_tri,
+  &mfs_quad_stress_star, &mfs_quad_stress_hex, &mfs_quad_gauss[0],   &mfs_quad_gauss[1],
+  &mfs_quad_gauss[2],  &mfs_quad_gauss[3],  &mfs_quad_gauss[4],    &mfs_quad_gauss[5],
+  &mfs_quad_gauss[6],  &mfs_quad_gauss[7],  &mfs_quad_gauss[8],    &mfs_quad_gauss[9],
+  NULL};
+
+const mfs_quad_type *mfs_quad_find(const char *name)
 {
-  for (size_t i = 0; i < sizeof rules / sizeof rules[0]; i++)
-    if (strcmp(name, rules[i].name) == 0) {
-      *rule = rules[i];
-      return MFS_OK;
-    }
-  int n, len = 0;
-  if (sscanf(name, "gauss%d%n", &n, &len) == 1 && name[len] == '\0' && n >= 1 && n <= 10 &&
-      name[5] >= '1' && name[5] <= '9') {
-    *rule = (mfs_quad_rule){"gauss", MFS_QK_GAUSS, 0, -1, MFS_CELLS_QUAD, n};
-    return MFS_OK;
-  }
-  return MFS_EINVAL;
+  for (int i = 0; name && mfs_quad_types[i]; i++)
+    if (strcmp(name, mfs_quad_types[i]->name) == 0)
+      return mfs_quad_types[i];
+  return NULL;
 }
 
-int mfs_quad_rule_check(const mfs_quad_rule *rule, int dim, mfs_lattice_kind lattice)
+int mfs_quad_applies(const mfs_quad_type *t, int dim, mfs_lattice_kind lattice)
 {
-  if (rule->dim && rule->dim != dim)
-    return MFS_EINVAL;
-  if (rule->lattice >= 0 && (int)lattice != rule->lattice)
-    return MFS_EINVAL;
-  return MFS_OK;
+  if (!t || dim < 1 || dim > 3 || (unsigned)lattice > MFS_LATTICE_HEX)
+    return 0;
+  return (t->dims >> dim & 1u) && (t->lattices >> lattice & 1u);
 }
 
 void mfs_quad_free(mfs_quad *q)
@@ -130,25 +149,23 @@ static void gauss_cell(mfs_quad *q, const mfs_particles *p, size_t c, int n, con
   }
 }
 
-mfs_quad *mfs_quad_alloc(const mfs_quad_rule *rule, const mfs_particles *p, int *status)
+mfs_quad *mfs_quad_alloc(const mfs_quad_type *t, const mfs_particles *p, mfs_status *status)
 {
-  int st = mfs_quad_rule_check(rule, p->dim, p->lattice);
+  mfs_status st = MFS_EINVAL;
   mfs_quad *q = NULL;
-  if (st != MFS_OK)
+  if (!mfs_quad_applies(t, p->dim, p->lattice))
     goto fail;
   /* the particles' cells must be the ones the rule is defined on */
-  int cells_ok = p->dim == 1 || p->lattice == MFS_LATTICE_HEX || p->cells == rule->cells;
-  if (rule->kind != MFS_QK_NODAL && rule->kind != MFS_QK_GAUSS && !cells_ok) {
-    st = MFS_EINVAL;
+  int cells_ok = p->dim == 1 || p->lattice == MFS_LATTICE_HEX || p->cells == t->cells;
+  if (t->centres && !cells_ok)
     goto fail;
-  }
   st = MFS_ENOMEM;
   q = calloc(1, sizeof *q);
   if (!q)
     goto fail;
   q->dim = p->dim;
-  int g = rule->kind == MFS_QK_GAUSS ? rule->gauss_n : 1;
-  size_t per = rule->kind == MFS_QK_GAUSS ? (size_t)g * (p->dim == 1 ? 1 : (size_t)g) : 1;
+  int g = t->gauss_n;
+  size_t per = g > 0 ? (size_t)g * (p->dim == 1 ? 1 : (size_t)g) : 1;
   size_t cap = p->n + p->ncell * per;
   q->x = malloc(cap * p->dim * sizeof *q->x);
   q->w = malloc(cap * sizeof *q->w);
@@ -156,19 +173,18 @@ mfs_quad *mfs_quad_alloc(const mfs_quad_rule *rule, const mfs_particles *p, int 
   if (!q->x || !q->w || !q->node)
     goto fail;
 
-  double share = rule->kind == MFS_QK_HALF ? 0.5 : (rule->kind == MFS_QK_THIRD ? 1.0 / 3.0 : 1.0);
-  if (rule->kind != MFS_QK_GAUSS)
+  if (t->node_share > 0.0)
     for (size_t I = 0; I < p->n; I++)
-      put(q, p->x + I * p->dim, share * p->vol[I], (int)I);
-  if (rule->kind == MFS_QK_HALF || rule->kind == MFS_QK_THIRD || rule->kind == MFS_QK_VORONOI) {
-    double cshare = 1.0 - share;
+      put(q, p->x + I * p->dim, t->node_share * p->vol[I], (int)I);
+  if (t->centres) {
+    double cshare = 1.0 - t->node_share;
     for (size_t c = 0; c < p->ncell; c++) {
       double x[3];
       centroid(p, c, x);
       put(q, x, cshare * mfs_cell_measure(p, c), -1);
     }
   }
-  if (rule->kind == MFS_QK_VORONOI) {
+  if (t->voronoi) {
     if (p->box.periodic) /* wrap centroids into the box */
       for (size_t i = p->n; i < q->n; i++)
         for (int k = 0; k < 2; k++) {
@@ -182,12 +198,12 @@ mfs_quad *mfs_quad_alloc(const mfs_quad_rule *rule, const mfs_particles *p, int 
     if (st != MFS_OK)
       goto fail;
   }
-  if (rule->kind == MFS_QK_GAUSS) {
-    double t[10], tw[10];
-    if (gauss01(g, t, tw) != MFS_OK)
+  if (g > 0) {
+    double tt[10], tw[10];
+    if (g > 10 || gauss01(g, tt, tw) != MFS_OK)
       goto fail;
     for (size_t c = 0; c < p->ncell; c++)
-      gauss_cell(q, p, c, g, t, tw);
+      gauss_cell(q, p, c, g, tt, tw);
   }
   if (status)
     *status = MFS_OK;

@@ -16,33 +16,52 @@
 #include <stddef.h>
 
 #include "mfs_particles.h"
+#include "mfs_status.h"
 
 #ifdef __cplusplus
 extern "C" {
 #endif
 
-typedef enum {
-  MFS_QK_NODAL,
-  MFS_QK_HALF,    /* particles + cell centres, half each */
-  MFS_QK_THIRD,   /* particles + triangle centroids, a third each */
-  MFS_QK_VORONOI, /* particles + triangle centroids, Voronoi volumes */
-  MFS_QK_GAUSS
-} mfs_quad_kind;
-
+/* A quadrature rule: a const type table, like kernels and shape functions.
+ * Points are generated from the fields: particles carrying node_share of
+ * their volume; with `centres`, a point at the centroid of every background
+ * cell carrying the rest of the cell's measure; with `voronoi`, every
+ * point's weight replaced by its Voronoi area; with gauss_n, gauss_n points
+ * per direction in every cell (triangles: the centroid for 1, a collapsed
+ * gauss_n x gauss_n rule otherwise). */
 typedef struct {
   const char *name;
-  mfs_quad_kind kind;
-  int dim;              /* 0 any, else the only dimension allowed */
-  int lattice;          /* -1 any, else the only mfs_lattice_kind allowed */
-  mfs_cell_kind cells;  /* cells the square lattice needs */
-  int gauss_n;          /* points per direction (gauss) */
-} mfs_quad_rule;
+  unsigned dims;        /* bit d (1 << d) set: defined in dimension d */
+  unsigned lattices;    /* bit k (1 << mfs_lattice_kind) set: defined on lattice k */
+  mfs_cell_kind cells;  /* how the cells of a square lattice must be cut */
+  double node_share;    /* share of a particle's volume at the particle (0: no point there) */
+  int centres;          /* stress points: a point at each cell centroid */
+  int voronoi;          /* weights from the Voronoi areas of all points (2D) */
+  int gauss_n;          /* Gauss points per direction in every cell (0: none) */
+} mfs_quad_type;
 
-/* Parse a rule name; MFS_EINVAL if unknown (gaussN takes N in 1..10). */
-int mfs_quad_rule_parse(const char *name, mfs_quad_rule *rule);
+extern const mfs_quad_type mfs_quad_nodal;       /* the particles */
+extern const mfs_quad_type mfs_quad_stress;      /* 1D stress points */
+extern const mfs_quad_type mfs_quad_stress_quad; /* Fig. 12a */
+extern const mfs_quad_type mfs_quad_stress_tri;  /* Fig. 12b */
+extern const mfs_quad_type mfs_quad_stress_star; /* Fig. 12c */
+extern const mfs_quad_type mfs_quad_stress_hex;  /* Fig. 12d */
+extern const mfs_quad_type mfs_quad_gauss[10];   /* gauss1 .. gauss10 */
 
-/* MFS_OK if the rule applies to this dimension and lattice, else MFS_EINVAL. */
-int mfs_quad_rule_check(const mfs_quad_rule *rule, int dim, mfs_lattice_kind lattice);
+/* NULL-terminated list of every rule, for lookup by name. */
+extern const mfs_quad_type *const mfs_quad_types[];
+
+/* The rule called `name`, or NULL. */
+const mfs_quad_type *mfs_quad_find(const char *name);
+
+/* 1 if the rule is defined in dimension dim on lattice kind `lattice`. */
+int mfs_quad_applies(const mfs_quad_type *t, int dim, mfs_lattice_kind lattice);
+
+/* 1 if the rule has points other than the particles (stress or Gauss points). */
+static inline int mfs_quad_has_stress_points(const mfs_quad_type *t)
+{
+  return t->centres || t->gauss_n > 0;
+}
 
 typedef struct {
   int dim;
@@ -52,9 +71,10 @@ typedef struct {
   int *node;  /* particle index of the point, or -1 */
 } mfs_quad;
 
-/* The quadrature set of rule on particles p (whose cells must match the
- * rule, see mfs_quad_rule.cells). */
-mfs_quad *mfs_quad_alloc(const mfs_quad_rule *rule, const mfs_particles *p, int *status);
+/* The quadrature set of rule t on particles p (whose cells must be cut as
+ * t->cells says).  NULL with *status: MFS_EINVAL (the rule does not apply),
+ * MFS_ENOMEM. */
+mfs_quad *mfs_quad_alloc(const mfs_quad_type *t, const mfs_particles *p, mfs_status *status);
 void mfs_quad_free(mfs_quad *q);
 
 #ifdef __cplusplus

@@ -428,23 +428,128 @@ static int mls_fast_order1(const mfs_shape_ctx *c, int nn, const double *d, doub
   return MFS_OK;
 }
 
-int mfs_shape_dpos_1d(const mfs_shape_type *t, const mfs_shape_ctx *c, int nn, const double *d,
+/* 1D linear MLS fused with the gather (mfs_shape_type.gather_1d): the
+ * arithmetic of mls_fast_order1 in 1D, in one pass over the candidates.
+ * The body is specialized for each built-in kernel (MFS_KERNEL_LIST): with
+ * the kernel's inline formula in place of the call through its table. */
+typedef void (*kernel_fn)(double z, double *w, double *dw, double *d2w);
+
+static inline int mls_gather_1d_body(kernel_fn kw, const mfs_shape_ctx *c, const mfs_box *box,
+                                     double x, const double *xp, const int *cand, size_t nc,
+                                     int *idx, double *out, double *work, int *nn, double *rcond)
+{
+  const double a = c->a, ia = 1.0 / a, cn = c->kernel->norm[0] * ia;
+  double a00 = 0, a01 = 0, a11 = 0, b00 = 0, b01 = 0, b11 = 0;
+  int k = 0;
+  for (size_t e = 0; e < nc; e++) {
+    int J = cand[e];
+    double dd = mfs_box_delta1(box, x, xp[J]);
+    if (fabs(dd) >= a)
+      continue;
+    double px = dd * ia, z = fabs(px), wv = 0.0, dw = 0.0, d2w = 0.0;
+    if (z < 1.0)
+      kw(z, &wv, &dw, &d2w);
+    double W = cn * wv;
+    double t = z > 0.0 ? -cn * dw / z * ia : -cn * d2w * ia;
+    double gx = t * px;
+    a00 += W;
+    a01 += W * px;
+    a11 += W * px * px;
+    b00 += gx;
+    b01 += gx * px;
+    b11 += gx * px * px;
+    work[3 * k] = W;
+    work[3 * k + 1] = gx;
+    work[3 * k + 2] = px;
+    idx[k++] = J;
+  }
+  *nn = k;
+  *rcond = 0.0;
+  double det = a00 * a11 - a01 * a01;
+  if (!(det > 0.0))
+    return MFS_ESINGULAR;
+  double i00 = a11 / det, i01 = -a01 / det, i11 = a00 / det;
+  double na0 = fabs(a00) + fabs(a01), na1 = fabs(a01) + fabs(a11); /* no libm call */
+  double ni0 = fabs(i00) + fabs(i01), ni1 = fabs(i01) + fabs(i11);
+  double na = na0 > na1 ? na0 : na1, ni = ni0 > ni1 ? ni0 : ni1;
+  *rcond = 1.0 / (na * ni);
+  if (!(*rcond >= c->rcond_min) || *rcond == 0.0)
+    return MFS_ESINGULAR;
+  double g0 = i00, g1 = i01; /* dg = A^-1 (e1/a - dA g) */
+  double r0 = -(b00 * g0 + b01 * g1);
+  double r1 = ia - (b01 * g0 + b11 * g1);
+  double dg0 = i00 * r0 + i01 * r1, dg1 = i01 * r0 + i11 * r1;
+  for (int J = 0; J < k; J++) {
+    const double *w = work + 3 * J;
+    double gp = g0 + g1 * w[2], dgp = dg0 + dg1 * w[2];
+    out[2 * J] = gp * w[0];
+    out[2 * J + 1] = dgp * w[0] + gp * w[1];
+  }
+  return MFS_OK;
+}
+
+#define GATHER_ARGS                                                                          \
+  const mfs_shape_ctx *c, const mfs_box *box, double x, const double *xp, const int *cand,   \
+    size_t nc, int *idx, double *out, double *work, int *nn, double *rcond
+#define MFS_X_GATHER(name)                                                                   \
+  static int mls_gather_1d_##name(GATHER_ARGS)                                               \
+  {                                                                                          \
+    return mls_gather_1d_body(mfs_kernel_##name##_w, c, box, x, xp, cand, nc, idx, out, work, \
+                              nn, rcond);                                                    \
+  }
+MFS_KERNEL_LIST(MFS_X_GATHER)
+#undef MFS_X_GATHER
+
+static int mls_gather_1d_any(GATHER_ARGS)
+{
+  return mls_gather_1d_body(c->kernel->eval, c, box, x, xp, cand, nc, idx, out, work, nn, rcond);
+}
+
+static int (*const gather_by_kernel[MFS_KERNEL_NIDS])(GATHER_ARGS) = {
+  [MFS_KERNEL_ID_NONE] = mls_gather_1d_any,
+#define MFS_X_ENTRY(name) [MFS_KERNEL_ID_##name] = mls_gather_1d_##name,
+  MFS_KERNEL_LIST(MFS_X_ENTRY)
+#undef MFS_X_ENTRY
+};
+
+static mfs_shape_gather_1d_fn mls_gather_1d(const mfs_kernel_type *k)
+{
+  int id = k ? k->id : 0;
+  return gather_by_kernel[id > 0 && id < MFS_KERNEL_NIDS ? id : 0];
+}
+#undef GATHER_ARGS
+
+mfs_status mfs_shape_dpos_1d(const mfs_shape_type *t, const mfs_shape_ctx *c, int nn, const double *d,
                       const double *v, int K, double *dphi, double *dgrad)
+{
+  if (!t->dpos_1d)
+    return MFS_ENOTSUP;
+  return t->dpos_1d(c, nn, d, v, K, dphi, dgrad);
+}
+
+/* sph: phi_J = V_J W(x_J - x), only J = K moves. */
+static int sph_dpos(const mfs_shape_ctx *c, int nn, const double *d, const double *v, int K,
+                    double *dphi, double *dgrad)
 {
   if (c->dim != 1 || nn < 1 || K < 0 || K >= nn)
     return MFS_EINVAL;
-  int m = t == &mfs_shape_mls ? 2 : 1;
-  if (t != &mfs_shape_mls && t != &mfs_shape_shepard && t != &mfs_shape_sph)
-    return MFS_ENOTSUP;
   for (int J = 0; J < nn; J++)
     dphi[J] = dgrad[J] = 0.0;
-  if (t == &mfs_shape_sph) { /* phi_J = V_J W(x_J - x): only J = K moves */
-    mfs_kernel_value kv = mfs_kernel_radial(c->kernel, 1, c->a, fabs(d[K]));
-    double sg = d[K] > 0.0 ? 1.0 : (d[K] < 0.0 ? -1.0 : 0.0);
-    dphi[K] = v[K] * kv.dW * sg;
-    dgrad[K] = -v[K] * kv.d2W;
-    return MFS_OK;
-  }
+  mfs_kernel_value kv = mfs_kernel_radial(c->kernel, 1, c->a, fabs(d[K]));
+  double sg = d[K] > 0.0 ? 1.0 : (d[K] < 0.0 ? -1.0 : 0.0);
+  dphi[K] = v[K] * kv.dW * sg;
+  dgrad[K] = -v[K] * kv.d2W;
+  return MFS_OK;
+}
+
+/* Shepard (m = 1) and linear MLS (m = 2): dual numbers through the MLS formulas. */
+static int mls_dpos_m(int m, const mfs_shape_ctx *c, int nn, const double *d, int K, double *dphi,
+                      double *dgrad)
+{
+  if (c->dim != 1 || nn < 1 || K < 0 || K >= nn)
+    return MFS_EINVAL;
+  for (int J = 0; J < nn; J++)
+    dphi[J] = dgrad[J] = 0.0;
   /* values (W, W_x = dW/dx, p) and their duals (derivatives wrt x_K) */
   double A[4] = {0}, At[4] = {0}, B[4] = {0}, Bt[4] = {0};
   double ia = 1.0 / c->a;
@@ -506,6 +611,20 @@ int mfs_shape_dpos_1d(const mfs_shape_type *t, const mfs_shape_ctx *c, int nn, c
     dgrad[J] = gxpt * W + gxp * Wt + gpt * Wx + gp * Wxt;
   }
   return MFS_OK;
+}
+
+static int shepard_dpos(const mfs_shape_ctx *c, int nn, const double *d, const double *v, int K,
+                        double *dphi, double *dgrad)
+{
+  (void)v;
+  return mls_dpos_m(1, c, nn, d, K, dphi, dgrad);
+}
+
+static int mls_dpos(const mfs_shape_ctx *c, int nn, const double *d, const double *v, int K,
+                    double *dphi, double *dgrad)
+{
+  (void)v;
+  return mls_dpos_m(2, c, nn, d, K, dphi, dgrad);
 }
 
 static int sph_eval(const mfs_shape_ctx *c, int nn, const double *d, const double *v, int self,
@@ -595,11 +714,26 @@ static int rl_eval(const mfs_shape_ctx *c, int nn, const double *d, const double
   return s2;
 }
 
-const mfs_shape_type mfs_shape_sph = {"sph", 1, 0, sph_eval};
-const mfs_shape_type mfs_shape_shepard = {"shepard", 0, 1, shepard_eval};
-const mfs_shape_type mfs_shape_mls = {"mls", 0, 1, mls_eval};
-const mfs_shape_type mfs_shape_kb = {"kb", 0, 1, kb_eval};
-const mfs_shape_type mfs_shape_rl = {"rl", 1, 1, rl_eval};
+const mfs_shape_type mfs_shape_sph = {.name = "sph",
+                                      .uses_volumes = 1,
+                                      .gradient_is_derivative = 1,
+                                      .eval = sph_eval,
+                                      .dpos_1d = sph_dpos};
+const mfs_shape_type mfs_shape_shepard = {.name = "shepard",
+                                          .partition_of_unity = 1,
+                                          .gradient_is_derivative = 1,
+                                          .eval = shepard_eval,
+                                          .dpos_1d = shepard_dpos};
+const mfs_shape_type mfs_shape_mls = {.name = "mls",
+                                      .partition_of_unity = 1,
+                                      .linear_complete = 1,
+                                      .gradient_is_derivative = 1,
+                                      .eval = mls_eval,
+                                      .dpos_1d = mls_dpos,
+                                      .gather_1d = mls_gather_1d};
+const mfs_shape_type mfs_shape_kb = {.name = "kb", .partition_of_unity = 1, .eval = kb_eval};
+const mfs_shape_type mfs_shape_rl = {
+  .name = "rl", .uses_volumes = 1, .partition_of_unity = 1, .eval = rl_eval};
 
 const mfs_shape_type *const mfs_shape_types[] = {&mfs_shape_sph, &mfs_shape_shepard,
                                                   &mfs_shape_mls, &mfs_shape_kb, &mfs_shape_rl,

@@ -23,6 +23,8 @@
 #include <stddef.h>
 
 #include "mfs_kernel.h"
+#include "mfs_particles.h"
+#include "mfs_status.h"
 
 #ifdef __cplusplus
 extern "C" {
@@ -35,10 +37,27 @@ typedef struct {
   double rcond_min; /* moment matrices with a smaller reciprocal condition number are singular */
 } mfs_shape_ctx;
 
+/* 1D position derivatives, for the consistent linearization of an Eulerian
+ * kernel: the derivatives of phi_J(x) and of its gradient g_J(x) = d phi_J
+ * / dx with respect to the position of neighbour K (d[K] = x_K - x), all
+ * other positions and x fixed, for every J: dphi[J] = d phi_J / d x_K,
+ * dgrad[J] = d g_J / d x_K.  Exact (forward-mode dual numbers through the
+ * MLS formulas).  MFS_OK, MFS_EINVAL, MFS_ESINGULAR as eval. */
+typedef int (*mfs_shape_dpos_fn)(const mfs_shape_ctx *c, int nn, const double *d,
+                                 const double *v, int K, double *dphi, double *dgrad);
+
+typedef int (*mfs_shape_gather_1d_fn)(const mfs_shape_ctx *c, const mfs_box *box, double x,
+                                      const double *xp, const int *cand, size_t nc, int *idx,
+                                      double *out, double *work, int *nn, double *rcond);
+
 typedef struct {
   const char *name;
-  int uses_volumes;        /* reads v[] */
-  int partition_of_unity;  /* sum_J phi_J = 1 (all but sph) */
+  /* capabilities */
+  int uses_volumes;           /* reads v[] */
+  int partition_of_unity;     /* sum_J phi_J = 1 (all but sph) */
+  int linear_complete;        /* the values reproduce linear fields (mls) */
+  int gradient_is_derivative; /* the gradient is d phi / dX, not a corrected gradient
+                                 (sph, shepard, mls; not kb, rl) */
   /* d: nn*dim offsets X_J - X; v: nn volumes (may be NULL if !uses_volumes);
    * self: index in 0..nn-1 of the neighbour located at X, or -1;
    * order: 1 or 2; out: nn*ncomp; work: mfs_shape_work_len(dim, nn) doubles;
@@ -46,6 +65,15 @@ typedef struct {
    * Returns MFS_OK or MFS_ESINGULAR. */
   int (*eval)(const mfs_shape_ctx *c, int nn, const double *d, const double *v, int self,
               int order, double *out, double *work, double *rcond);
+  mfs_shape_dpos_fn dpos_1d;  /* NULL where not available (kb, rl) */
+  /* Optional fast path (NULL: none): 1D, order 1, fused with the gather of
+   * the neighbours, the values of eval; gather_1d(kernel) gives the function
+   * for that kernel (specialized for the built-in ones).  It takes the
+   * candidates cand[0..nc) at positions xp (the minimum image of box) and
+   * keeps the neighbours with |x_J - x| < a: their indices to idx[0..*nn),
+   * (phi, phi') to out; work: 3 nc doubles.  The rod solver's Eulerian force
+   * calls it every step. */
+  mfs_shape_gather_1d_fn (*gather_1d)(const mfs_kernel_type *kernel);
 } mfs_shape_type;
 
 extern const mfs_shape_type mfs_shape_sph;
@@ -64,13 +92,8 @@ static inline int mfs_shape_ncomp(int dim, int order)
 
 size_t mfs_shape_work_len(int dim, int nn);
 
-/* 1D, for the consistent linearization of an Eulerian kernel: the derivatives
- * of phi_J(x) and of its gradient g_J(x) = d phi_J / dx with respect to the
- * position of neighbour K (d[K] = x_K - x), all other positions and x fixed,
- * for every J: dphi[J] = d phi_J / d x_K, dgrad[J] = d g_J / d x_K.  Exact
- * (forward-mode dual numbers through the MLS formulas).  sph, shepard and mls;
- * MFS_ENOTSUP for kb and rl, MFS_ESINGULAR as eval. */
-int mfs_shape_dpos_1d(const mfs_shape_type *t, const mfs_shape_ctx *c, int nn, const double *d,
+/* t->dpos_1d, or MFS_ENOTSUP where the shape type has none. */
+mfs_status mfs_shape_dpos_1d(const mfs_shape_type *t, const mfs_shape_ctx *c, int nn, const double *d,
                       const double *v, int K, double *dphi, double *dgrad);
 
 #ifdef __cplusplus

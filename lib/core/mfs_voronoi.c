@@ -49,7 +49,7 @@ static double poly_area(const double *P, int n, double *rmax)
   return 0.5 * s;
 }
 
-int mfs_voronoi_areas(size_t n, const double *x, const mfs_box *box, double *area)
+mfs_status mfs_voronoi_areas(size_t n, const double *x, const mfs_box *box, double *area)
 {
   if (box->dim != 2)
     return MFS_EINVAL;
@@ -65,11 +65,11 @@ int mfs_voronoi_areas(size_t n, const double *x, const mfs_box *box, double *are
   double R = 3.0 * sqrt(Lx * Ly / (double)(n ? n : 1));
   double Rmax = box->periodic ? 0.499 * (Lx < Ly ? Lx : Ly) : 2.0 * hypot(Lx, Ly);
   size_t left = n;
-  int st = MFS_OK;
+  mfs_status st = MFS_OK;
   while (left > 0) {
     if (R > Rmax)
       R = Rmax;
-    int gst;
+    mfs_status gst;
     mfs_grid *g = mfs_grid_alloc(2, n, x, box, R, &gst);
     mfs_nlist *nl = g ? mfs_nlist_build(g, n, x, R, &gst) : NULL;
     if (!nl) {

@@ -7,6 +7,7 @@
 #include <stddef.h>
 
 #include "mfs_particles.h"
+#include "mfs_status.h"
 
 #ifdef __cplusplus
 extern "C" {
@@ -14,7 +15,7 @@ extern "C" {
 
 /* area[i] for the n points x (n*2) of box.  Returns MFS_OK, MFS_EINVAL
  * (not 2D, a point outside a finite box) or MFS_ENOMEM. */
-int mfs_voronoi_areas(size_t n, const double *x, const mfs_box *box, double *area);
+mfs_status mfs_voronoi_areas(size_t n, const double *x, const mfs_box *box, double *area);
 
 #ifdef __cplusplus
 }

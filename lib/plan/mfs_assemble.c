@@ -4,298 +4,364 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "mfs_status.h"
-
-void mfs_plan_free(mfs_plan *pl)
+mfs_forms mfs_forms_stiffness(const mfs_material *m)
 {
-  if (!pl)
+  mfs_forms f = {.stiffness = 1, .physics = m->physics};
+  if (m->physics == MFS_PHYS_PLANE_STRAIN) {
+    double lam = mfs_material_lambda(m);
+    f.c[0] = lam + 2.0 * m->modulus;
+    f.c[1] = lam;
+    f.c[2] = m->modulus;
+  } else {
+    f.c[0] = m->modulus;
+  }
+  return f;
+}
+
+void mfs_row_free(mfs_row *r)
+{
+  if (!r)
     return;
-  mfs_nlist_free(pl->nl);
-  free(pl->tab);
-  free(pl);
+  free(r->col);
+  free(r->pcol);
+  free(r->K);
+  free(r->M);
+  free(r->G);
+  free(r->mark);
+  free(r->eidx);
+  free(r->dphi);
+  free(r->dgrad);
+  mfs_eval_free(&r->ev);
+  memset(r, 0, sizeof *r);
 }
 
-mfs_plan *mfs_plan_alloc(const mfs_plan_spec *spec, const mfs_particles *p, const mfs_quad *q,
-                         int *status, size_t *bad)
+mfs_status mfs_row_init(mfs_row *r, const mfs_plan *pl, const mfs_forms *f)
 {
-  int st = MFS_EINVAL;
-  mfs_plan *pl = NULL;
-  mfs_grid *g = NULL;
-  double *d = NULL, *v = NULL, *work = NULL;
-  if (!spec->kernel || !spec->shape || !(spec->dilation > 0.0) || spec->order < 1 ||
-      spec->order > 2 || q->dim != p->dim)
-    goto done;
-  st = MFS_ENOMEM;
-  pl = calloc(1, sizeof *pl);
-  if (!pl)
-    goto done;
-  pl->dim = p->dim;
-  pl->p = p;
-  pl->q = q;
-  pl->shape = spec->shape;
-  pl->order = spec->order;
-  pl->ncomp = mfs_shape_ncomp(p->dim, spec->order);
-  pl->ctx = (mfs_shape_ctx){spec->kernel, p->dim, spec->dilation * p->dx, spec->rcond_min};
-  pl->rcond = 1.0;
-  g = mfs_grid_alloc(p->dim, p->n, p->x, &p->box, pl->ctx.a, &st);
-  if (!g)
-    goto done;
-  pl->nl = mfs_nlist_build(g, q->n, q->x, pl->ctx.a, &st);
-  if (!pl->nl)
-    goto done;
-  st = MFS_ENOMEM;
-  size_t nnz = pl->nl->ptr[q->n], maxrow = 1;
-  for (size_t Q = 0; Q < q->n; Q++) {
-    size_t len = pl->nl->ptr[Q + 1] - pl->nl->ptr[Q];
-    maxrow = len > maxrow ? len : maxrow;
-  }
-  pl->tab = malloc((nnz ? nnz : 1) * pl->ncomp * sizeof *pl->tab);
-  d = malloc(maxrow * p->dim * sizeof *d);
-  v = malloc(maxrow * sizeof *v);
-  work = malloc(mfs_shape_work_len(p->dim, (int)maxrow) * sizeof *work);
-  if (!pl->tab || !d || !v || !work)
-    goto done;
-  for (size_t Q = 0; Q < q->n; Q++) {
-    size_t e0 = pl->nl->ptr[Q];
-    int nn = (int)(pl->nl->ptr[Q + 1] - e0), self = -1;
-    const double *xq = q->x + Q * p->dim;
-    for (int J = 0; J < nn; J++) {
-      int I = pl->nl->idx[e0 + J];
-      mfs_box_delta(&p->box, xq, p->x + (size_t)I * p->dim, d + J * p->dim);
-      v[J] = p->vol[I];
-      if (I == q->node[Q])
-        self = J;
+  memset(r, 0, sizeof *r);
+  int need2 = f->euler != MFS_EULER_NONE || f->ls_beta > 0.0;
+  if (mfs_plan_order(pl) < (need2 ? 2 : 1))
+    return MFS_EINVAL;
+  if (f->euler != MFS_EULER_NONE &&
+      (mfs_plan_particles(pl)->dim != 1 || f->physics != MFS_PHYS_SCALAR))
+    return MFS_EINVAL;
+  const mfs_particles *p = mfs_plan_particles(pl);
+  size_t n = p->n;
+  /* a row has at most the sum of the list lengths of the points that see I */
+  size_t cap = 1;
+  for (size_t I = 0; I < n; I++) {
+    size_t nq, s = 0;
+    const int *Q;
+    mfs_plan_particle_points(pl, I, &nq, &Q);
+    for (size_t t = 0; t < nq; t++) {
+      mfs_point pt;
+      mfs_plan_point(pl, (size_t)Q[t], &pt);
+      s += pt.nn;
     }
-    double rc;
-    st = spec->shape->eval(&pl->ctx, nn, d, v, self, pl->order, pl->tab + e0 * pl->ncomp, work,
-                           &rc);
-    if (rc < pl->rcond)
-      pl->rcond = rc;
-    if (st != MFS_OK) {
-      pl->bad = Q;
-      if (bad)
-        *bad = Q;
-      goto done;
-    }
+    cap = s > cap ? s : cap;
   }
-  st = MFS_OK;
-done:
-  free(d);
-  free(v);
-  free(work);
-  mfs_grid_free(g);
-  if (st != MFS_OK) {
-    mfs_plan_free(pl);
-    pl = NULL;
+  cap = cap < n ? cap : (n ? n : 1);
+  r->ndof = mfs_physics_ndof(f->physics);
+  r->cap = cap;
+  r->col = malloc(cap * sizeof *r->col);
+  r->pcol = malloc(mfs_plan_max_neighbours(pl) * sizeof *r->pcol);
+  r->mark = malloc((n ? n : 1) * sizeof *r->mark);
+  if (f->stiffness)
+    r->K = malloc(cap * (size_t)(r->ndof * r->ndof) * sizeof *r->K);
+  if (f->density != 0.0 || f->ls_beta > 0.0)
+    r->M = malloc(cap * sizeof *r->M);
+  if (f->euler != MFS_EULER_NONE)
+    r->G = malloc(cap * sizeof *r->G);
+  if (!r->col || !r->pcol || !r->mark || (f->stiffness && !r->K) ||
+      ((f->density != 0.0 || f->ls_beta > 0.0) && !r->M) || (f->euler && !r->G))
+    goto nomem;
+  for (size_t i = 0; i < n; i++)
+    r->mark[i] = -1;
+  if (f->euler == MFS_EULER_CONSISTENT) {
+    size_t mx = mfs_plan_max_neighbours(pl);
+    r->eidx = malloc(mx * sizeof *r->eidx);
+    r->dphi = malloc(mx * sizeof *r->dphi);
+    r->dgrad = malloc(mx * sizeof *r->dgrad);
+    if (!r->eidx || !r->dphi || !r->dgrad ||
+        mfs_eval_init(&r->ev, mfs_plan_disc(pl), mfs_plan_support(pl), 1, &p->box, mx) != MFS_OK)
+      goto nomem;
   }
-  if (status)
-    *status = st;
-  return pl;
+  return MFS_OK;
+nomem:
+  mfs_row_free(r);
+  return MFS_ENOMEM;
 }
 
-int mfs_physics_ndof(mfs_physics_kind kind)
+/* The forms' contributions of one quadrature point pt to row I (at position
+ * iI of the point's list); col[k] is the row position of neighbour k.  The
+ * arithmetic of each term is fixed (a += (w c) g, ...) so that the values do
+ * not depend on how the loops are split. */
+static int add_point(mfs_row *r, const mfs_plan *pl, const mfs_forms *f, size_t I,
+                     const mfs_point *pt, size_t iI, const int *col)
 {
-  return kind == MFS_PHYS_PLANE_STRAIN ? 2 : 1;
-}
-
-typedef enum { PAIR_GRAD, PAIR_PLANE, PAIR_MASS } pair_kind;
-
-/* Add w b(I, J) over the list e0 .. e1 of one quadrature point to the row
- * accumulator acc (nd2 per column; mark[J] is J's column, already set).
- * fi: particle I's table entry.  The arithmetic is that of one term
- * a += w c0 g, etc., so that results do not depend on how loops are split. */
-static void add_point(const mfs_plan *pl, pair_kind kind, int ndof, const double *coef,
-                      double w, const double *fi, size_t e0, size_t e1, const int *mark,
-                      double *acc)
-{
-  const int *idx = pl->nl->idx;
-  const double *tab = pl->tab;
-  int nc = pl->ncomp, dim = pl->dim, nd2 = ndof * ndof;
-  double c0 = coef[0], c1 = coef[1], c2 = coef[2];
-  switch (kind) {
-  case PAIR_GRAD: {
-    double wc = w * c0; /* w * c0 * g evaluates as (w * c0) * g */
-    if (dim == 2) {
-      double i1 = fi[1], i2 = fi[2];
-      for (size_t e = e0; e < e1; e++) {
-        const double *fj = tab + e * nc;
+  const int nc = pt->ncomp, dim = mfs_plan_particles(pl)->dim, nd = r->ndof, nd2 = nd * nd;
+  const double w = pt->w, *tab = pt->phi, *fi = tab + iI * (size_t)nc;
+  const size_t nn = pt->nn;
+  if (f->stiffness) {
+    double *K = r->K;
+    if (f->physics == MFS_PHYS_PLANE_STRAIN) { /* B_I^T D B_J */
+      double c0 = f->c[0], c1 = f->c[1], c2 = f->c[2];
+      double ix = fi[1], iy = fi[2];
+      for (size_t e = 0; e < nn; e++) {
+        const double *fj = tab + e * (size_t)nc;
+        double *a = K + (size_t)col[e] * nd2, jx = fj[1], jy = fj[2];
+        a[0] += w * (c0 * ix * jx + c2 * iy * jy);
+        a[1] += w * (c1 * ix * jy + c2 * iy * jx);
+        a[2] += w * (c1 * iy * jx + c2 * ix * jy);
+        a[3] += w * (c0 * iy * jy + c2 * ix * jx);
+      }
+    } else if (dim == 2) {
+      double wc = w * f->c[0], i1 = fi[1], i2 = fi[2];
+      for (size_t e = 0; e < nn; e++) {
+        const double *fj = tab + e * (size_t)nc;
         double g = 0.0;
         g += i1 * fj[1];
         g += i2 * fj[2];
-        acc[mark[idx[e]]] += wc * g;
+        K[col[e]] += wc * g;
       }
     } else {
-      for (size_t e = e0; e < e1; e++) {
-        const double *fj = tab + e * nc;
+      double wc = w * f->c[0];
+      for (size_t e = 0; e < nn; e++) {
+        const double *fj = tab + e * (size_t)nc;
         double g = 0.0;
         for (int k = 0; k < dim; k++)
           g += fi[1 + k] * fj[1 + k];
-        acc[mark[idx[e]]] += wc * g;
+        K[col[e]] += wc * g;
       }
     }
-    break;
   }
-  case PAIR_PLANE: /* B_I^T D B_J, c0 = lambda + 2 mu, c1 = lambda, c2 = mu */
-    for (size_t e = e0; e < e1; e++) {
-      const double *fj = tab + e * nc;
-      double *a = acc + (size_t)mark[idx[e]] * nd2;
-      double ix = fi[1], iy = fi[2], jx = fj[1], jy = fj[2];
-      a[0] += w * (c0 * ix * jx + c2 * iy * jy);
-      a[1] += w * (c1 * ix * jy + c2 * iy * jx);
-      a[2] += w * (c1 * iy * jx + c2 * ix * jy);
-      a[3] += w * (c0 * iy * jy + c2 * ix * jx);
+  if (f->density != 0.0) {
+    double wf = w * f->density * fi[0];
+    for (size_t e = 0; e < nn; e++)
+      r->M[col[e]] += wf * tab[e * (size_t)nc];
+  }
+  double lapI = 0.0;
+  if (f->ls_beta > 0.0 || f->euler != MFS_EULER_NONE)
+    for (int k = 0; k < dim; k++)
+      lapI += fi[1 + dim + k * dim + k];
+  if (f->ls_beta > 0.0) {
+    double beta = f->ls_beta;
+    for (size_t e = 0; e < nn; e++) {
+      const double *fk = tab + e * (size_t)nc;
+      double lapK = 0.0;
+      for (int k = 0; k < dim; k++)
+        lapK += fk[1 + dim + k * dim + k];
+      r->K[col[e] * nd2] += beta * w * lapI * lapK;
+      r->M[col[e]] -= beta * w * lapI * fk[0];
     }
-    break;
-  case PAIR_MASS: {
-    double wf = w * c0 * fi[0]; /* w * c0 * fi0 * fj0 evaluates left to right */
-    for (size_t e = e0; e < e1; e++) {
-      double m = wf * tab[e * nc];
-      double *a = acc + (size_t)mark[idx[e]] * nd2;
-      for (int k = 0; k < ndof; k++)
-        a[k * ndof + k] += m;
+  }
+  if (f->euler == MFS_EULER_PAPER) {
+    /* kernel motion, phi_I''(Q) (u~_Q - u~_I): eqs 71, 89-92 */
+    const mfs_particles *p = mfs_plan_particles(pl);
+    double F = f->stretch > 0.0 ? f->stretch : 1.0;
+    for (size_t e = 0; e < nn; e++) {
+      int K = pt->idx[e];
+      const double *fk = tab + e * (size_t)nc;
+      if (pt->node >= 0) {
+        if (K == pt->node)
+          r->G[col[e]] += w * lapI;
+      } else {
+        double dQK[3], dQI[3]; /* x_K - x_I through the point, minimum image */
+        mfs_box_delta(&p->box, pt->x, p->x + (size_t)K * dim, dQK);
+        mfs_box_delta(&p->box, pt->x, p->x + I * dim, dQI);
+        double uK = (1.0 - 1.0 / F) * (dQK[0] - dQI[0]); /* eq. 92 */
+        r->G[col[e]] += w * lapI * F * (fk[0] - fk[1] * uK);
+      }
     }
-    break;
+    r->G[col[iI]] -= w * lapI;
+  } else if (f->euler == MFS_EULER_CONSISTENT) {
+    /* phi_I''(Q) u~_Q with u~_Q = u~_node or sum_K phi_K(Q) u~_K, then the
+     * position derivatives d phi_I'(Q) / d x_K */
+    for (size_t e = 0; e < nn; e++) {
+      int K = pt->idx[e];
+      if (pt->node >= 0) {
+        if (K == pt->node)
+          r->G[col[e]] += w * lapI;
+      } else {
+        r->G[col[e]] += w * lapI * tab[e * (size_t)nc];
+      }
+    }
+    const mfs_particles *p = mfs_plan_particles(pl);
+    int nk = mfs_eval_gather(&r->ev, pt->x, p->x, p->vol, pt->idx, nn, pt->node, r->eidx);
+    if (nk != (int)nn)
+      return MFS_EINVAL;
+    for (int k = 0; k < nk; k++) {
+      mfs_status st = mfs_shape_dpos_1d(r->ev.shape, &r->ev.ctx, nk, mfs_eval_offsets(&r->ev),
+                                 mfs_eval_volumes(&r->ev), k, r->dphi, r->dgrad);
+      if (st != MFS_OK)
+        return st;
+      r->G[col[k]] += w * r->dgrad[iI];
+    }
   }
-  }
+  return MFS_OK;
 }
 
-/* Row-wise assembly of sum_Q w_Q b(I, J, Q) with a marker array (as in
- * CSparse's cs_multiply): for each particle I, the quadrature points that
- * see it (the transposed lists), and for each of those, the particles J
- * they see.  Columns of a row are in order of first appearance. */
-static int assemble_pairs(const mfs_plan *pl, pair_kind kind, int ndof, const double *coef,
-                          mfs_csr **out)
+mfs_status mfs_row_assemble(mfs_row *r, const mfs_plan *pl, const mfs_forms *f, size_t I)
 {
-  const mfs_nlist *nl = pl->nl;
-  size_t n = pl->p->n, nq = nl->nq, nnz = nl->ptr[nq];
-  int nd2 = ndof * ndof;
-  int st = MFS_ENOMEM;
-  size_t *tptr = calloc(n + 1, sizeof *tptr), *next = malloc((n ? n : 1) * sizeof *next);
-  int *tq = malloc((nnz ? nnz : 1) * sizeof *tq), *mark = malloc((n ? n : 1) * sizeof *mark);
-  int *cols = NULL;
-  double *acc = NULL;
-  mfs_csr *A = NULL;
-  if (!tptr || !next || !tq || !mark)
-    goto done;
-  for (size_t e = 0; e < nnz; e++)
-    tptr[nl->idx[e] + 1]++;
-  for (size_t i = 0; i < n; i++)
-    tptr[i + 1] += tptr[i];
-  memcpy(next, tptr, n * sizeof *next);
-  for (size_t Q = 0; Q < nq; Q++)
-    for (size_t e = nl->ptr[Q]; e < nl->ptr[Q + 1]; e++)
-      tq[next[nl->idx[e]]++] = (int)Q;
-  size_t maxrow = 0;
-  for (size_t i = 0; i < n; i++) { /* bound on the row length: sum of list lengths */
-    size_t s = 0;
-    for (size_t t = tptr[i]; t < tptr[i + 1]; t++)
-      s += nl->ptr[tq[t] + 1] - nl->ptr[tq[t]];
-    maxrow = s > maxrow ? s : maxrow;
-  }
-  for (size_t i = 0; i < n; i++)
-    mark[i] = -1;
-  cols = malloc((maxrow ? maxrow : 1) * sizeof *cols);
-  acc = malloc((maxrow ? maxrow : 1) * nd2 * sizeof *acc);
-  size_t cap = 8 * n * nd2 + 16;
-  A = mfs_csr_alloc(n * ndof, n * ndof, cap);
-  if (!cols || !acc || !A)
-    goto done;
-  size_t pos = 0;
-  for (size_t I = 0; I < n; I++) {
-    int len = 0;
-    for (size_t t = tptr[I]; t < tptr[I + 1]; t++) {
-      size_t Q = (size_t)tq[t], e0 = nl->ptr[Q], e1 = nl->ptr[Q + 1], ei = e0;
-      for (size_t e = e0; e < e1; e++) { /* columns met for the first time, and I's entry */
-        int J = nl->idx[e];
-        ei = J == (int)I ? e : ei;
-        if (mark[J] < 0) {
-          mark[J] = len;
-          cols[len] = J;
+  const int nd2 = r->ndof * r->ndof;
+  for (size_t s = 0; s < r->len; s++) /* reset the marks of the last row */
+    r->mark[r->col[s]] = -1;
+  r->len = 0;
+  size_t nq;
+  const int *Qs;
+  mfs_plan_particle_points(pl, I, &nq, &Qs);
+  int *col = r->pcol, st = MFS_OK;
+  for (size_t t = 0; t < nq && st == MFS_OK; t++) {
+    mfs_point pt;
+    mfs_plan_point(pl, (size_t)Qs[t], &pt);
+    size_t iI = 0;
+    for (size_t e = 0; e < pt.nn; e++) { /* columns met for the first time, and I's entry */
+      int J = pt.idx[e];
+      iI = J == (int)I ? e : iI;
+      if (r->mark[J] < 0) {
+        size_t s = r->len++;
+        r->mark[J] = (int)s;
+        r->col[s] = J;
+        if (r->K)
           for (int k = 0; k < nd2; k++)
-            acc[(size_t)len * nd2 + k] = 0.0;
-          len++;
-        }
+            r->K[s * nd2 + k] = 0.0;
+        if (r->M)
+          r->M[s] = 0.0;
+        if (r->G)
+          r->G[s] = 0.0;
       }
-      add_point(pl, kind, ndof, coef, pl->q->w[Q], pl->tab + ei * pl->ncomp, e0, e1, mark, acc);
+      col[e] = r->mark[J];
     }
-    if (pos + (size_t)len * nd2 > cap) {
-      size_t ncap = 2 * cap + (size_t)len * nd2;
-      int *ti = realloc(A->idx, ncap * sizeof *ti);
-      if (!ti)
-        goto done;
-      A->idx = ti;
-      double *tv = realloc(A->val, ncap * sizeof *tv);
-      if (!tv)
-        goto done;
-      A->val = tv;
-      cap = ncap;
-    }
-    for (int r = 0; r < ndof; r++) {
-      for (int s = 0; s < len; s++)
-        for (int b = 0; b < ndof; b++) {
-          A->idx[pos] = cols[s] * ndof + b;
-          A->val[pos] = acc[s * nd2 + r * ndof + b];
-          pos++;
-        }
-      A->ptr[I * ndof + r + 1] = pos;
-    }
-    for (int s = 0; s < len; s++)
-      mark[cols[s]] = -1;
+    st = add_point(r, pl, f, I, &pt, iI, col);
   }
-  st = MFS_OK;
-done:
-  free(tptr);
-  free(next);
-  free(tq);
-  free(mark);
-  free(cols);
-  free(acc);
-  if (st != MFS_OK) {
-    mfs_csr_free(A);
-    A = NULL;
-  }
-  *out = A;
   return st;
 }
 
-int mfs_assemble_stiffness(const mfs_plan *pl, const mfs_material *mat, mfs_csr **K)
+void mfs_row_sort(mfs_row *r)
+{
+  const int nd2 = r->ndof * r->ndof;
+  for (size_t e = 1; e < r->len; e++) { /* insertion sort: rows are short */
+    int c = r->col[e];
+    double k[4] = {0, 0, 0, 0}, m = 0.0, g = 0.0;
+    if (r->K)
+      memcpy(k, r->K + e * nd2, nd2 * sizeof *k);
+    if (r->M)
+      m = r->M[e];
+    if (r->G)
+      g = r->G[e];
+    size_t s = e;
+    for (; s > 0 && r->col[s - 1] > c; s--) {
+      r->col[s] = r->col[s - 1];
+      if (r->K)
+        memcpy(r->K + s * nd2, r->K + (s - 1) * nd2, nd2 * sizeof *k);
+      if (r->M)
+        r->M[s] = r->M[s - 1];
+      if (r->G)
+        r->G[s] = r->G[s - 1];
+    }
+    r->col[s] = c;
+    if (r->K)
+      memcpy(r->K + s * nd2, k, nd2 * sizeof *k);
+    if (r->M)
+      r->M[s] = m;
+    if (r->G)
+      r->G[s] = g;
+  }
+  for (size_t s = 0; s < r->len; s++)
+    r->mark[r->col[s]] = (int)s;
+}
+
+/* Every row of the forms f into CSR: the stiffness blocks (want_mass = 0)
+ * or the consistent mass on the diagonal of each block (want_mass = 1). */
+static mfs_status assemble_csr(const mfs_plan *pl, const mfs_forms *f, int want_mass,
+                               mfs_csr **out)
+{
+  *out = NULL;
+  const size_t n = mfs_plan_particles(pl)->n;
+  const int ndof = mfs_physics_ndof(f->physics), nd2 = ndof * ndof;
+  mfs_row r;
+  mfs_status st = mfs_row_init(&r, pl, f);
+  if (st != MFS_OK)
+    return st;
+  size_t cap = 8 * n * nd2 + 16;
+  mfs_csr *A = mfs_csr_alloc(n * ndof, n * ndof, cap);
+  st = A ? MFS_OK : MFS_ENOMEM;
+  size_t pos = 0;
+  for (size_t I = 0; I < n && st == MFS_OK; I++) {
+    st = mfs_row_assemble(&r, pl, f, I);
+    if (st != MFS_OK)
+      break;
+    size_t len = r.len;
+    if (pos + len * nd2 > cap) {
+      size_t ncap = 2 * cap + len * nd2;
+      int *ti = realloc(A->idx, ncap * sizeof *ti);
+      if (ti)
+        A->idx = ti;
+      double *tv = ti ? realloc(A->val, ncap * sizeof *tv) : NULL;
+      if (!tv) {
+        st = MFS_ENOMEM;
+        break;
+      }
+      A->val = tv;
+      cap = ncap;
+    }
+    for (int a = 0; a < ndof; a++) {
+      for (size_t s = 0; s < len; s++)
+        for (int b = 0; b < ndof; b++) {
+          A->idx[pos] = r.col[s] * ndof + b;
+          A->val[pos] = want_mass ? (a == b ? r.M[s] : 0.0) : r.K[s * nd2 + a * ndof + b];
+          pos++;
+        }
+      A->ptr[I * ndof + a + 1] = pos;
+    }
+  }
+  mfs_row_free(&r);
+  if (st != MFS_OK) {
+    mfs_csr_free(A);
+    return st;
+  }
+  *out = A;
+  return MFS_OK;
+}
+
+mfs_status mfs_assemble_stiffness(const mfs_plan *pl, const mfs_material *mat, mfs_csr **K)
 {
   *K = NULL;
-  if (mat->kind == MFS_PHYS_PLANE_STRAIN) {
-    if (pl->dim != 2)
-      return MFS_EINVAL;
-    double c[3] = {mat->lambda + 2.0 * mat->modulus, mat->lambda, mat->modulus};
-    return assemble_pairs(pl, PAIR_PLANE, 2, c, K);
-  }
-  double c[3] = {mat->modulus, 0.0, 0.0};
-  return assemble_pairs(pl, PAIR_GRAD, 1, c, K);
+  if (mat->physics == MFS_PHYS_PLANE_STRAIN && mfs_plan_particles(pl)->dim != 2)
+    return MFS_EINVAL;
+  mfs_forms f = mfs_forms_stiffness(mat);
+  return assemble_csr(pl, &f, 0, K);
 }
 
-int mfs_assemble_mass_consistent(const mfs_plan *pl, const mfs_material *mat, mfs_csr **M)
+mfs_status mfs_assemble_mass_consistent(const mfs_plan *pl, const mfs_material *mat,
+                                        mfs_csr **M)
 {
-  double c[3] = {mat->density, 0.0, 0.0};
-  return assemble_pairs(pl, PAIR_MASS, mfs_physics_ndof(mat->kind), c, M);
+  mfs_forms f = {.physics = mat->physics, .density = mat->density};
+  return assemble_csr(pl, &f, 1, M);
 }
 
-int mfs_assemble_mass_lumped(const mfs_plan *pl, const mfs_material *mat, double *m)
+mfs_status mfs_assemble_mass_lumped(const mfs_plan *pl, const mfs_material *mat, double *m)
 {
-  const mfs_nlist *nl = pl->nl;
-  int ndof = mfs_physics_ndof(mat->kind), nc = pl->ncomp;
-  for (size_t i = 0; i < pl->p->n * ndof; i++)
+  const mfs_particles *p = mfs_plan_particles(pl);
+  int ndof = mfs_physics_ndof(mat->physics);
+  for (size_t i = 0; i < p->n * ndof; i++)
     m[i] = 0.0;
-  if (!pl->shape->partition_of_unity) { /* particle masses rho V_I (eq. 51) */
-    for (size_t I = 0; I < pl->p->n; I++)
+  if (!mfs_plan_disc(pl)->shape->partition_of_unity) { /* particle masses rho V_I (eq. 51) */
+    for (size_t I = 0; I < p->n; I++)
       for (int k = 0; k < ndof; k++)
-        m[I * ndof + k] = mat->density * pl->p->vol[I];
+        m[I * ndof + k] = mat->density * p->vol[I];
     return MFS_OK;
   }
+  if (mfs_plan_order(pl) < 1)
+    return MFS_EINVAL;
   /* rho times the integral of phi_I: the row sum of the consistent mass
    * (eq. 131) for a partition of unity */
-  for (size_t Q = 0; Q < nl->nq; Q++) {
-    double f = mat->density * pl->q->w[Q];
-    for (size_t e = nl->ptr[Q]; e < nl->ptr[Q + 1]; e++)
+  for (size_t Q = 0; Q < mfs_plan_npoints(pl); Q++) {
+    mfs_point pt;
+    mfs_plan_point(pl, Q, &pt);
+    double f = mat->density * pt.w;
+    for (size_t e = 0; e < pt.nn; e++)
       for (int k = 0; k < ndof; k++)
-        m[(size_t)nl->idx[e] * ndof + k] += f * pl->tab[e * nc];
+        m[(size_t)pt.idx[e] * ndof + k] += f * pt.phi[e * (size_t)pt.ncomp];
   }
   return MFS_OK;
 }
@@ -308,90 +374,74 @@ static int cmp_entry(const void *a, const void *b)
   return (x->j > y->j) - (x->j < y->j);
 }
 
-int mfs_stencil(const mfs_stencil_spec *s, mfs_stencil_entry **entries, size_t *n, size_t *bad)
+mfs_status mfs_stencil(const mfs_disc *d, mfs_stencil_entry **entries, size_t *n, size_t *bad)
 {
   *entries = NULL;
   *n = 0;
-  mfs_quad_rule rule;
-  int st = mfs_quad_rule_parse(s->quadrature, &rule);
-  if (st != MFS_OK || s->mat.kind != MFS_PHYS_SCALAR)
-    return MFS_EINVAL;
-  st = mfs_quad_rule_check(&rule, s->dim, s->lattice);
+  mfs_status st = mfs_disc_check(d, NULL);
   if (st != MFS_OK)
     return st;
+  if (!mfs_disc_infinite(d) || d->material.physics != MFS_PHYS_SCALAR)
+    return MFS_EINVAL;
   /* entries couple particles closer than 2a; the box must hold more than
    * twice that so that no two images of a particle both couple with node 0 */
-  double gamma = s->gamma > 0.0 ? s->gamma : 1.0;
-  double hy = s->lattice == MFS_LATTICE_HEX ? sqrt(3.0) / 2.0 : gamma;
-  int nx = 2 * (int)ceil(2.0 * s->plan.dilation) + 3;
-  int ny = 2 * (int)ceil(2.0 * s->plan.dilation / hy) + 4;
+  double gamma = d->source.gamma > 0.0 ? d->source.gamma : 1.0;
+  double hy = d->source.lattice == MFS_LATTICE_HEX ? sqrt(3.0) / 2.0 : gamma;
+  int nx = 2 * (int)ceil(2.0 * d->dilation) + 3;
+  int ny = 2 * (int)ceil(2.0 * d->dilation / hy) + 4;
   if (nx % 2)
     nx++;
-  mfs_lattice_spec ls = {s->dim, s->lattice, nx, s->dim == 1 ? 1 : ny, s->dx, gamma, 1,
-                         rule.cells, 0.0, 0};
-  mfs_particles *p = mfs_lattice_alloc(&ls, &st);
-  mfs_quad *q = p ? mfs_quad_alloc(&rule, p, &st) : NULL;
-  mfs_plan *pl = q ? mfs_plan_alloc(&s->plan, p, q, &st, bad) : NULL;
-  mfs_csr *K = NULL, *M = NULL;
+  mfs_particles *p = NULL;
+  mfs_quad *q = NULL;
+  mfs_plan *pl = NULL;
   double *ml = NULL;
   mfs_stencil_entry *out = NULL;
+  mfs_row r = {0};
+  st = mfs_disc_periodic_box(d, nx, ny, &p, &q);
+  if (st != MFS_OK)
+    goto done;
+  pl = mfs_plan_alloc(d, p, q, &st);
   if (!pl)
     goto done;
-  st = mfs_assemble_stiffness(pl, &s->mat, &K);
+  st = mfs_plan_tabulate(pl, 1, bad);
   if (st != MFS_OK)
     goto done;
-  if (s->consistent_mass) {
-    st = mfs_assemble_mass_consistent(pl, &s->mat, &M);
-  } else {
-    st = MFS_ENOMEM;
-    ml = malloc(p->n * sizeof *ml);
-    if (ml)
-      st = mfs_assemble_mass_lumped(pl, &s->mat, ml);
-  }
+  mfs_forms f = mfs_forms_stiffness(&d->material);
+  if (d->consistent_mass)
+    f.density = d->material.density;
+  st = mfs_row_init(&r, pl, &f);
   if (st != MFS_OK)
     goto done;
-  /* union of the patterns of row 0 of K and M */
-  size_t cap = (K->ptr[1] - K->ptr[0]) + (M ? M->ptr[1] - M->ptr[0] : 0) + 1, cnt = 0;
+  st = mfs_row_assemble(&r, pl, &f, 0);
+  if (st != MFS_OK)
+    goto done;
   st = MFS_ENOMEM;
-  out = malloc(cap * sizeof *out);
+  if (!d->consistent_mass) {
+    ml = malloc(p->n * sizeof *ml);
+    if (!ml || mfs_assemble_mass_lumped(pl, &d->material, ml) != MFS_OK)
+      goto done;
+  }
+  out = malloc((r.len ? r.len : 1) * sizeof *out);
   if (!out)
     goto done;
-  for (int pass = 0; pass < 2; pass++) {
-    const mfs_csr *A = pass == 0 ? K : M;
-    if (!A)
-      continue;
-    for (size_t e = A->ptr[0]; e < A->ptr[1]; e++) {
-      int J = A->idx[e];
-      int seen = 0;
-      for (size_t i = 0; i < cnt && !seen; i++)
-        seen = out[i].j == J; /* temporarily the particle index */
-      if (seen)
-        continue;
-      out[cnt].j = J;
-      out[cnt].K = mfs_csr_get(K, 0, J);
-      out[cnt].M = M ? mfs_csr_get(M, 0, J) : (J == 0 ? ml[0] : 0.0);
-      cnt++;
-    }
+  for (size_t i = 0; i < r.len; i++) { /* lattice offsets by the minimum image */
+    int J = r.col[i];
+    double dd[3];
+    mfs_box_delta(&p->box, p->x, p->x + (size_t)J * p->dim, dd);
+    int kk = d->dim == 1 ? 0 : (int)lround(dd[1] / p->a2[1]);
+    int jj = (int)lround((dd[0] - kk * p->a2[0]) / p->a1[0]);
+    out[i] = (mfs_stencil_entry){
+      .j = jj, .k = kk, .K = r.K[i], .M = d->consistent_mass ? r.M[i] : (J == 0 ? ml[0] : 0.0)};
   }
-  for (size_t i = 0; i < cnt; i++) { /* lattice offsets by the minimum image */
-    int J = out[i].j;
-    double d[3];
-    mfs_box_delta(&p->box, p->x, p->x + (size_t)J * p->dim, d);
-    int kk = s->dim == 1 ? 0 : (int)lround(d[1] / p->a2[1]);
-    int jj = (int)lround((d[0] - kk * p->a2[0]) / p->a1[0]);
-    out[i].j = jj;
-    out[i].k = kk;
-  }
-  qsort(out, cnt, sizeof *out, cmp_entry);
+  qsort(out, r.len, sizeof *out, cmp_entry);
   *entries = out;
-  *n = cnt;
+  *n = r.len;
   out = NULL;
   st = MFS_OK;
 done:
+  mfs_row_free(&r);
   free(out);
   free(ml);
-  mfs_csr_free(K);
-  mfs_csr_free(M);
   mfs_plan_free(pl);
   mfs_quad_free(q);
   mfs_particles_free(p);

@@ -1,102 +1,112 @@
-/* Plans and assembly.
+/* Assembly: one machinery for finite models and periodic unit cells.
  *
- * A plan is built once from particles, a quadrature set, a kernel, a
- * dilation and a shape-function type: neighbour lists of the quadrature
- * points (cell lists, radius a = dilation * dx) and the table of shape
- * functions and derivatives there.  Second derivatives are tabulated only
- * when asked for (order 2).  Assembly of stiffness and mass reuses it.
+ * The row of particle I is accumulated over the quadrature points that see
+ * it (the plan's transposed lists), and for each point over the particles J
+ * it sees, with a marker array (as in CSparse's cs_multiply); columns come
+ * in order of first appearance.  What a row accumulates is a set of forms
+ * (mfs_forms):
  *
- * Stiffness (linearized, zero initial stress):
- *   scalar        K_IJ = C sum_Q w_Q grad phi_I . grad phi_J      1D bar (C = E),
- *                 2D anti-plane (C = shear modulus, paper 003 eq. 113)
- *   plane strain  K_IJ = sum_Q w_Q B_I^T D B_J, D from lambda and mu, dofs (2I, 2I+1)
- * Mass: consistent M_IJ = rho sum_Q w_Q phi_I phi_J (eq. 112); lumped
- * m_I = rho sum_Q w_Q phi_I(Q), the row sum of the consistent mass (eq. 131)
- * for partition-of-unity shapes, and the particle mass rho V_I (eq. 51) for
- * sph, which is not a partition of unity. */
+ *   stiffness, scalar        K_IJ = C sum_Q w_Q grad phi_I . grad phi_J
+ *                            (1D bar, C = E; 2D anti-plane, C = mu: paper 003 eq. 113)
+ *   stiffness, plane strain  K_IJ = sum_Q w_Q B_I^T D B_J (2 x 2 blocks),
+ *                            D from lambda and mu
+ *   mass                     M_IJ = rho sum_Q w_Q phi_I phi_J (eq. 112)
+ *   Eulerian, paper          G_IJ = sum_Q w_Q phi_I''(Q) (T_QJ - delta_IJ) with the
+ *                            kernel motion of eqs 71, 89-92 (1D, mfs_dispersion.h)
+ *   Eulerian, consistent     G_IJ = sum_Q w_Q [phi_I''(Q) T_QJ + d phi_I'(Q) / d x_J]
+ *   least squares            K += beta sum_Q w phi_I'' phi_J'', M -= beta sum_Q w phi_I'' phi_J
+ *                            (Beissel-Belytschko, eqs 104-107)
+ *
+ * Finite models assemble every row into CSR (mfs_assemble_stiffness,
+ * mfs_assemble_mass_consistent); the unit-cell analyses (mfs_stencil,
+ * mfs_dispersion.h) assemble the rows of the particles of one cell of a
+ * periodic box.  The lumped mass is m_I = rho sum_Q w_Q phi_I(Q), the row
+ * sum of the consistent mass (eq. 131) for partition-of-unity shapes, and
+ * the particle mass rho V_I (eq. 51) for sph. */
 #ifndef MFS_ASSEMBLE_H
 #define MFS_ASSEMBLE_H
 
 #include <stddef.h>
 
 #include "mfs_csr.h"
-#include "mfs_kernel.h"
-#include "mfs_neighbor.h"
-#include "mfs_particles.h"
-#include "mfs_quad.h"
-#include "mfs_shape.h"
+#include "mfs_disc.h"
+#include "mfs_eval.h"
+#include "mfs_material.h"
+#include "mfs_plan.h"
+#include "mfs_status.h"
 
 #ifdef __cplusplus
 extern "C" {
 #endif
 
+typedef enum { MFS_EULER_NONE, MFS_EULER_PAPER, MFS_EULER_CONSISTENT } mfs_euler_form;
+
+/* The forms a row accumulates. */
 typedef struct {
-  const mfs_kernel_type *kernel;
-  const mfs_shape_type *shape;
-  double dilation;  /* D: support radius a = D * dx */
-  int order;        /* 1: values and gradients; 2: also second derivatives */
-  double rcond_min; /* threshold for a singular moment matrix (e.g. 1e-12) */
-} mfs_plan_spec;
+  int stiffness;            /* K blocks (ndof x ndof) */
+  mfs_physics_kind physics; /* scalar or plane strain */
+  double c[3];              /* scalar: c[0] = C; plane strain: lambda + 2 mu, lambda, mu */
+  double density;           /* rho of the consistent mass M (0: no mass) */
+  mfs_euler_form euler;     /* the Eulerian term G (1D scalar; the plan needs order 2) */
+  double stretch;           /* F of the Eulerian analysis (1 if 0) */
+  double ls_beta;           /* least-squares stabilization beta (0: none; order 2) */
+} mfs_forms;
 
+/* The stiffness forms of a material (K only). */
+mfs_forms mfs_forms_stiffness(const mfs_material *m);
+
+/* One row's accumulators and workspace, reused row after row. */
 typedef struct {
-  int dim;
-  const mfs_particles *p; /* borrowed */
-  const mfs_quad *q;      /* borrowed */
-  mfs_shape_ctx ctx;
-  const mfs_shape_type *shape;
-  int order, ncomp;
-  mfs_nlist *nl;  /* quadrature point -> particles within a */
-  double *tab;    /* nl->ptr[nq] * ncomp: shape functions at the quadrature points */
-  double rcond;   /* smallest reciprocal condition number met */
-  size_t bad;     /* the quadrature point where building failed, if it did */
-} mfs_plan;
+  size_t len;     /* columns of the last row */
+  int *col;       /* len particle indices, in order of first appearance */
+  double *K;      /* len * ndof^2: the stiffness block of each column, row-major */
+  double *M;      /* len: consistent mass (if the forms have a density) */
+  double *G;      /* len: the Eulerian term (if the forms have one) */
+  /* private */
+  int ndof;
+  size_t cap;
+  int *mark;      /* particles: position in the row, or -1 */
+  int *pcol;      /* a point's neighbours: their positions in the row */
+  mfs_eval ev;    /* consistent Eulerian form: the point's offsets */
+  int *eidx;
+  double *dphi, *dgrad;
+} mfs_row;
 
-/* Build a plan.  On failure returns NULL, sets *status (MFS_ESINGULAR:
- * singular moment matrix at quadrature point *bad; MFS_ETOOSMALL; MFS_EINVAL;
- * MFS_ENOMEM) and, if bad is not NULL, the failing point. */
-mfs_plan *mfs_plan_alloc(const mfs_plan_spec *spec, const mfs_particles *p, const mfs_quad *q,
-                         int *status, size_t *bad);
-void mfs_plan_free(mfs_plan *pl);
+/* A row for plan pl and forms f.  MFS_OK, MFS_EINVAL (forms the plan's table
+ * cannot give: second derivatives for the Eulerian and least-squares terms),
+ * MFS_ENOMEM. */
+mfs_status mfs_row_init(mfs_row *r, const mfs_plan *pl, const mfs_forms *f);
+void mfs_row_free(mfs_row *r);
 
-typedef enum { MFS_PHYS_SCALAR, MFS_PHYS_PLANE_STRAIN } mfs_physics_kind;
+/* Accumulate the row of particle I.  MFS_OK, MFS_ENOMEM, or the shape
+ * functions' status for the consistent Eulerian form (MFS_ESINGULAR). */
+mfs_status mfs_row_assemble(mfs_row *r, const mfs_plan *pl, const mfs_forms *f, size_t particle);
 
-typedef struct {
-  mfs_physics_kind kind;
-  double modulus; /* E (1D), shear modulus (anti-plane, plane strain) */
-  double lambda;  /* Lame lambda (plane strain) */
-  double density;
-} mfs_material;
+/* Sort the columns of the last row by particle index (with their values). */
+void mfs_row_sort(mfs_row *r);
 
-/* Degrees of freedom per particle of a physics kind. */
-int mfs_physics_ndof(mfs_physics_kind kind);
+/* The stiffness of a material over every particle, CSR of order n ndof
+ * (plane strain dofs interleaved (u_x, u_y) per particle); *K is allocated
+ * (mfs_csr_free). */
+mfs_status mfs_assemble_stiffness(const mfs_plan *pl, const mfs_material *mat, mfs_csr **K);
 
-/* Assemble the stiffness; *K is allocated (free with mfs_csr_free). */
-int mfs_assemble_stiffness(const mfs_plan *pl, const mfs_material *mat, mfs_csr **K);
+/* Consistent mass (CSR, per dof) or lumped mass (vector of n ndof). */
+mfs_status mfs_assemble_mass_consistent(const mfs_plan *pl, const mfs_material *mat,
+                                        mfs_csr **M);
+mfs_status mfs_assemble_mass_lumped(const mfs_plan *pl, const mfs_material *mat, double *m);
 
-/* Consistent mass (CSR, per dof) or lumped mass (vector of n*ndof). */
-int mfs_assemble_mass_consistent(const mfs_plan *pl, const mfs_material *mat, mfs_csr **M);
-int mfs_assemble_mass_lumped(const mfs_plan *pl, const mfs_material *mat, double *m);
-
-/* Stencil of an interior node of an infinite lattice: the row of node 0 of a
- * periodic lattice large enough that no entry aliases. */
-typedef struct {
-  int dim;
-  mfs_lattice_kind lattice;
-  double dx, gamma;
-  const char *quadrature; /* rule name */
-  mfs_plan_spec plan;
-  mfs_material mat;
-  int consistent_mass;
-} mfs_stencil_spec;
-
+/* Stencil of an interior particle of the infinite lattice of d (scalar
+ * physics; d->source the infinite lattice): the row of particle 0 of a
+ * periodic box large enough that no entry aliases. */
 typedef struct {
   int j, k;     /* offset in lattice coordinates (a1, a2); k = 0 in 1D */
   double K, M;  /* stiffness and mass (lumped: M only at (0, 0)) */
 } mfs_stencil_entry;
 
-/* *entries is allocated (free()); sorted by (k, j).  Scalar physics only. */
-int mfs_stencil(const mfs_stencil_spec *spec, mfs_stencil_entry **entries, size_t *n,
-                size_t *bad);
+/* *entries is allocated (free()), sorted by (k, j).  MFS_OK; MFS_EINVAL
+ * (not an infinite lattice, not scalar physics, a bad d); MFS_ESINGULAR at
+ * quadrature point *bad; MFS_ENOMEM. */
+mfs_status mfs_stencil(const mfs_disc *d, mfs_stencil_entry **entries, size_t *n, size_t *bad);
 
 #ifdef __cplusplus
 }

@@ -1,79 +1,48 @@
 #include "mfs_model.h"
 
 #include <math.h>
+#include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 
 #include "mfs_status.h"
 
-void mfs_model_spec_default(mfs_model_spec *s)
+mfs_model_spec mfs_model_spec_default(void)
 {
-  *s = (mfs_model_spec){.dim = 1,
-                        .nx = 41,
-                        .ny = 1,
-                        .lx = 1.0,
-                        .ly = 1.0,
-                        .periodic = 0,
-                        .fixed = MFS_FIX_NONE,
-                        .kernel = &mfs_kernel_cubic,
-                        .shape = &mfs_shape_mls,
-                        .dilation = 2.0,
-                        .quadrature = "gauss2",
-                        .consistent_mass = 0,
-                        .physics = MFS_PHYS_SCALAR,
-                        .modulus = 1.0,
-                        .density = 1.0,
-                        .poisson = 0.25,
-                        .rcond_min = 0.0};
+  mfs_disc d = mfs_disc_default();
+  d.source = (mfs_source){.lattice = MFS_LATTICE_LINE, .nx = 41, .ny = 1, .lx = 1.0, .ly = 1.0};
+  d.quadrature = &mfs_quad_gauss[1];
+  return (mfs_model_spec){.disc = d, .fixed = MFS_FIX_NONE};
 }
 
-/* Spacings of the lattice of a spec (checked). */
-static void spacing(const mfs_model_spec *s, double *dx, double *dy)
+mfs_status mfs_model_spec_check(const mfs_model_spec *s, const char **field)
 {
-  *dx = s->periodic ? s->lx / s->nx : s->lx / (s->nx - 1);
-  *dy = s->dim == 1 ? 0.0 : (s->periodic ? s->ly / s->ny : s->ly / (s->ny - 1));
-}
-
-int mfs_model_spec_check(const mfs_model_spec *s)
-{
-  if (s->dim != 1 && s->dim != 2)
+  static char name[64];
+  const char *f = "";
+  if (field)
+    *field = "";
+  mfs_status st = mfs_disc_check(&s->disc, &f);
+  if (st != MFS_OK) {
+    snprintf(name, sizeof name, "disc.%s", f);
+    if (field)
+      *field = name;
+    return st;
+  }
+  const mfs_disc *d = &s->disc;
+  if (mfs_disc_infinite(d)) {
+    if (field)
+      *field = "disc.source";
     return MFS_EINVAL;
-  if (s->nx < 2 || (s->dim == 2 && s->ny < 2))
-    return MFS_EINVAL;
-  if (!(s->lx > 0.0) || (s->dim == 2 && !(s->ly > 0.0)) || !isfinite(s->lx) ||
-      (s->dim == 2 && !isfinite(s->ly)))
-    return MFS_EINVAL;
-  if (!s->kernel || !s->shape || !(s->dilation > 0.0) || !s->quadrature)
-    return MFS_EINVAL;
-  if (!(s->modulus > 0.0) || !(s->density > 0.0) || !isfinite(s->modulus) ||
-      !isfinite(s->density))
-    return MFS_EINVAL;
-  if (s->fixed != MFS_FIX_NONE && s->fixed != MFS_FIX_ENDS && s->fixed != MFS_FIX_BOUNDARY)
-    return MFS_EINVAL;
-  if (s->periodic && s->fixed != MFS_FIX_NONE)
-    return MFS_EINVAL;
-  if (s->dim == 2 && s->fixed == MFS_FIX_ENDS)
-    return MFS_EINVAL;
-  if (s->physics == MFS_PHYS_PLANE_STRAIN && (s->dim != 2 || !(s->poisson > -1.0 && s->poisson < 0.5)))
-    return MFS_EINVAL;
-  if (s->physics != MFS_PHYS_SCALAR && s->physics != MFS_PHYS_PLANE_STRAIN)
-    return MFS_EINVAL;
+  }
+  int bad = s->fixed != MFS_FIX_NONE && s->fixed != MFS_FIX_ENDS && s->fixed != MFS_FIX_BOUNDARY;
+  bad |= d->source.periodic && s->fixed != MFS_FIX_NONE;
+  bad |= d->dim == 2 && s->fixed == MFS_FIX_ENDS;
   /* fixing the boundary must leave free particles */
-  if (s->fixed != MFS_FIX_NONE && (s->nx < 3 || (s->dim == 2 && s->ny < 3)))
+  bad |= s->fixed != MFS_FIX_NONE && (d->source.nx < 3 || (d->dim == 2 && d->source.ny < 3));
+  if (bad) {
+    if (field)
+      *field = "fixed";
     return MFS_EINVAL;
-  mfs_quad_rule rule;
-  mfs_lattice_kind lat = s->dim == 1 ? MFS_LATTICE_LINE : MFS_LATTICE_SQUARE;
-  if (mfs_quad_rule_parse(s->quadrature, &rule) != MFS_OK ||
-      mfs_quad_rule_check(&rule, s->dim, lat) != MFS_OK)
-    return MFS_EINVAL;
-  if (rule.kind == MFS_QK_VORONOI && s->periodic && ((s->nx & 1) || (s->ny & 1)))
-    return MFS_EINVAL; /* the star pattern tiles a periodic box only with even counts */
-  if (s->periodic) {
-    double dx, dy;
-    spacing(s, &dx, &dy);
-    double a = s->dilation * dx;
-    if (!(s->nx * dx > 2.0 * a) || (s->dim == 2 && !(s->ny * dy > 2.0 * a)))
-      return MFS_ETOOSMALL;
   }
   return MFS_OK;
 }
@@ -149,41 +118,9 @@ static mfs_csr *reduce(const mfs_csr *A, const long *keep, const size_t *dof, si
   return B;
 }
 
-int mfs_model_geometry(const mfs_model_spec *spec, mfs_particles **p, mfs_quad **q)
+mfs_model *mfs_model_alloc(const mfs_model_spec *spec, mfs_status *status, size_t *bad)
 {
-  *p = NULL;
-  *q = NULL;
-  int st = mfs_model_spec_check(spec);
-  if (st != MFS_OK)
-    return st;
-  double dx, dy;
-  spacing(spec, &dx, &dy);
-  mfs_quad_rule rule;
-  mfs_quad_rule_parse(spec->quadrature, &rule);
-  mfs_lattice_spec ls = {spec->dim,
-                         spec->dim == 1 ? MFS_LATTICE_LINE : MFS_LATTICE_SQUARE,
-                         spec->nx,
-                         spec->dim == 1 ? 1 : spec->ny,
-                         dx,
-                         spec->dim == 1 ? 1.0 : dy / dx,
-                         spec->periodic,
-                         rule.cells,
-                         0.0,
-                         0};
-  *p = mfs_lattice_alloc(&ls, &st);
-  if (!*p)
-    return st;
-  *q = mfs_quad_alloc(&rule, *p, &st);
-  if (!*q) {
-    mfs_particles_free(*p);
-    *p = NULL;
-  }
-  return st;
-}
-
-mfs_model *mfs_model_alloc(const mfs_model_spec *spec, int *status, size_t *bad)
-{
-  int st = mfs_model_spec_check(spec);
+  mfs_status st = mfs_model_spec_check(spec, NULL);
   mfs_model *m = NULL;
   mfs_csr *K = NULL, *M = NULL;
   double *ml = NULL;
@@ -195,24 +132,22 @@ mfs_model *mfs_model_alloc(const mfs_model_spec *spec, int *status, size_t *bad)
   if (!m)
     goto done;
   m->spec = *spec;
-  spacing(spec, &m->dx, &m->dy);
-  m->a = spec->dilation * m->dx;
-  m->c = sqrt(spec->modulus / spec->density);
-  m->ndof = mfs_physics_ndof(spec->physics);
-  m->mat.kind = spec->physics;
-  m->mat.modulus = spec->modulus;
-  m->mat.density = spec->density;
-  m->mat.lambda = spec->physics == MFS_PHYS_PLANE_STRAIN
-                    ? 2.0 * spec->modulus * spec->poisson / (1.0 - 2.0 * spec->poisson)
-                    : 0.0;
+  const mfs_disc *d = &spec->disc;
+  m->dx = mfs_disc_dx(d);
+  m->dy = mfs_disc_dy(d);
+  m->a = d->dilation * m->dx;
+  m->c = sqrt(d->material.modulus / d->material.density);
+  m->ndof = mfs_physics_ndof(d->material.physics);
+  m->mat = d->material;
 
-  st = mfs_model_geometry(spec, &m->p, &m->q);
+  st = mfs_disc_geometry(d, &m->p, &m->q);
   if (st != MFS_OK)
     goto done;
-  mfs_plan_spec ps = {spec->kernel, spec->shape, spec->dilation, 1,
-                      spec->rcond_min > 0.0 ? spec->rcond_min : 1e-12};
-  m->pl = mfs_plan_alloc(&ps, m->p, m->q, &st, bad);
+  m->pl = mfs_plan_alloc(d, m->p, m->q, &st);
   if (!m->pl)
+    goto done;
+  st = mfs_plan_tabulate(m->pl, 1, bad);
+  if (st != MFS_OK)
     goto done;
 
   size_t np = m->p->n, nfull = np * (size_t)m->ndof;
@@ -240,7 +175,7 @@ mfs_model *mfs_model_alloc(const mfs_model_spec *spec, int *status, size_t *bad)
   st = mfs_assemble_stiffness(m->pl, &m->mat, &K);
   if (st != MFS_OK)
     goto done;
-  if (spec->consistent_mass) {
+  if (d->consistent_mass) {
     st = mfs_assemble_mass_consistent(m->pl, &m->mat, &M);
     if (st != MFS_OK)
       goto done;
@@ -306,9 +241,9 @@ int mfs_model_rigid_fields(const mfs_model *m, double *r)
         r[i] = 1.0;
     return 1;
   }
-  int nr = m->spec.periodic ? 2 : 3; /* a rotation is not periodic */
+  int nr = m->spec.disc.source.periodic ? 2 : 3; /* a rotation is not periodic */
   if (r) {
-    double cx = 0.5 * m->spec.lx, cy = 0.5 * m->spec.ly;
+    double cx = 0.5 * m->spec.disc.source.lx, cy = 0.5 * m->spec.disc.source.ly;
     for (size_t i = 0; i < n; i++) {
       size_t f = m->dof[i], I = f / 2;
       int comp = (int)(f % 2);
@@ -322,10 +257,10 @@ int mfs_model_rigid_fields(const mfs_model *m, double *r)
   return nr;
 }
 
-int mfs_model_write_mtx(const mfs_model *m, FILE *fK, FILE *fM)
+mfs_status mfs_model_write_mtx(const mfs_model *m, FILE *fK, FILE *fM)
 {
   if (fK) {
-    int st = mfs_csr_write_mtx(m->K, fK);
+    mfs_status st = mfs_csr_write_mtx(m->K, fK);
     if (st != MFS_OK)
       return st;
   }

@@ -14,9 +14,10 @@
  * the whole boundary) have their degrees of freedom removed: K and M are the
  * rows and columns of the free degrees of freedom.
  *
- * The model is built with the core machinery (mfs_lattice_alloc,
- * mfs_quad_alloc, mfs_plan_alloc, mfs_assemble_*), and keeps the plan so
- * that the element bound (mfs_bound.h) can reuse its shape table. */
+ * The model is built with the core machinery (mfs_disc_geometry,
+ * mfs_plan_alloc, mfs_plan_tabulate, mfs_assemble_*), and keeps the plan so
+ * that the element bound (mfs_bound.h) can reuse its shape table.  The
+ * discretization is an mfs_disc with a finite source (mfs_disc.h). */
 #ifndef MFS_MODEL_H
 #define MFS_MODEL_H
 
@@ -25,6 +26,9 @@
 
 #include "mfs_assemble.h"
 #include "mfs_csr.h"
+#include "mfs_disc.h"
+#include "mfs_plan.h"
+#include "mfs_status.h"
 
 #ifdef __cplusplus
 extern "C" {
@@ -37,41 +41,28 @@ typedef enum {
 } mfs_fix_kind;
 
 typedef struct {
-  int dim;                  /* 1 or 2 */
-  int nx, ny;               /* particles per direction (ny: 2D only) */
-  double lx, ly;            /* lengths of the domain (ly: 2D only) */
-  int periodic;             /* periodic box; then fixed must be MFS_FIX_NONE */
-  mfs_fix_kind fixed;       /* MFS_FIX_ENDS is 1D only */
-  const mfs_kernel_type *kernel;
-  const mfs_shape_type *shape;
-  double dilation;          /* D: support radius a = D dx */
-  const char *quadrature;   /* rule name, mfs_quad.h */
-  int consistent_mass;      /* 0: lumped (row sum, eq. 131) */
-  mfs_physics_kind physics; /* scalar (bar, anti-plane) or plane strain (2D) */
-  double modulus;           /* E (1D) or shear modulus mu (2D); > 0 */
-  double density;           /* rho; > 0 */
-  double poisson;           /* nu of plane strain, in (-1, 0.5) */
-  double rcond_min;         /* singular moment matrix threshold; 0 means 1e-12 */
+  mfs_disc disc;      /* a finite source: disc.source.nx, ny, lx, ly, periodic */
+  mfs_fix_kind fixed; /* MFS_FIX_ENDS is 1D only; none when periodic */
 } mfs_model_spec;
 
 /* The defaults: 1D, 41 nodes on [0, 1], cubic kernel, MLS, D = 2, gauss2,
  * lumped mass, free, E = rho = 1. */
-void mfs_model_spec_default(mfs_model_spec *s);
+mfs_model_spec mfs_model_spec_default(void);
 
-/* MFS_OK, or MFS_EINVAL for a spec that cannot describe a model (bad
- * dimension, fewer than 2 particles per direction, periodic and fixed,
- * fixed `ends` in 2D, non-positive modulus, density or dilation, unknown or
- * inapplicable quadrature, plane strain in 1D, no free degree of freedom),
- * or MFS_ETOOSMALL for a periodic box not larger than two support radii
- * (nx <= 2 D), where a particle would see itself through the box. */
-int mfs_model_spec_check(const mfs_model_spec *s);
+/* MFS_OK; or the status of mfs_disc_check (MFS_EINVAL, MFS_ETOOSMALL for a
+ * periodic box not longer than two support radii, where a particle would
+ * see itself through the box) with *field naming the member ("disc." and
+ * mfs_disc_check's name); or MFS_EINVAL with *field "disc.source" (an
+ * infinite source), "fixed" (unknown, periodic and fixed, ends in 2D, fewer
+ * than 3 particles per direction when fixed).  field may be NULL. */
+mfs_status mfs_model_spec_check(const mfs_model_spec *s, const char **field);
 
 typedef struct {
   mfs_model_spec spec;
   mfs_particles *p;       /* the particles */
   mfs_quad *q;            /* the quadrature points */
   mfs_plan *pl;           /* shape table at the quadrature points */
-  mfs_material mat;
+  mfs_material mat;       /* spec.disc.material */
   int ndof;               /* degrees of freedom per particle */
   unsigned char *fixed;   /* p->n flags: 1 if the particle is fixed */
   size_t n;               /* free degrees of freedom: the order of K and M */
@@ -84,15 +75,10 @@ typedef struct {
   double c;               /* wave speed sqrt(modulus / density): bar, or shear wave */
 } mfs_model;
 
-/* The particles and quadrature points of the model a spec describes,
- * without shape functions or assembly.  MFS_OK, or the statuses of
- * mfs_model_spec_check, MFS_ENOMEM; *p and *q are NULL on failure. */
-int mfs_model_geometry(const mfs_model_spec *spec, mfs_particles **p, mfs_quad **q);
-
 /* Build and assemble a model.  NULL on failure with *status: as
  * mfs_model_spec_check, MFS_ESINGULAR (singular moment matrix at quadrature
  * point *bad, if bad is not NULL), MFS_ENOMEM. */
-mfs_model *mfs_model_alloc(const mfs_model_spec *spec, int *status, size_t *bad);
+mfs_model *mfs_model_alloc(const mfs_model_spec *spec, mfs_status *status, size_t *bad);
 void mfs_model_free(mfs_model *m);
 
 /* Drop the plan (shape table) and quadrature set, which hold most of the
@@ -109,7 +95,7 @@ int mfs_model_rigid_fields(const mfs_model *m, double *r);
 
 /* Write K to fK and M (the lumped mass as a diagonal matrix) to fM in
  * Matrix Market coordinate format; a NULL file is skipped.  MFS_OK, MFS_EIO. */
-int mfs_model_write_mtx(const mfs_model *m, FILE *fK, FILE *fM);
+mfs_status mfs_model_write_mtx(const mfs_model *m, FILE *fK, FILE *fM);
 
 #ifdef __cplusplus
 }

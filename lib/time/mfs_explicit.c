@@ -65,11 +65,11 @@ static int runge_kutta(int stages, size_t n, double *u, double *v, double *a, do
   return accel(ctx, u, a);
 }
 
-int mfs_explicit_step(mfs_scheme scheme, size_t n, double *u, double *v, double *a, double t,
-                      double dt, const mfs_explicit_work *w, mfs_accel_fn accel,
+mfs_status mfs_explicit_step(mfs_scheme scheme, size_t n, double *u, double *v, double *a,
+                             double t, double dt, const mfs_explicit_work *w, mfs_accel_fn accel,
                       mfs_impose_fn impose, void *ctx)
 {
-  int st;
+  mfs_status st;
   switch (scheme) {
   case MFS_SCHEME_LEAPFROG: st = leapfrog(n, u, v, a, t + dt, dt, accel, impose, ctx); break;
   case MFS_SCHEME_EULER: st = runge_kutta(1, n, u, v, a, t, dt, w, accel, impose, ctx); break;
@@ -83,4 +83,21 @@ int mfs_explicit_step(mfs_scheme scheme, size_t n, double *u, double *v, double 
     if (!isfinite(u[i]) || !isfinite(v[i]))
       return MFS_EDOMAIN;
   return MFS_OK;
+}
+
+static const char *const scheme_names[] = {"leapfrog", "euler", "rk2", "rk4"};
+
+const char *mfs_scheme_name(mfs_scheme s)
+{
+  return (unsigned)s < 4 ? scheme_names[s] : "?";
+}
+
+mfs_status mfs_scheme_parse(const char *name, mfs_scheme *s)
+{
+  for (int i = 0; name && i < 4; i++)
+    if (strcmp(name, scheme_names[i]) == 0) {
+      *s = (mfs_scheme)i;
+      return MFS_OK;
+    }
+  return MFS_EINVAL;
 }

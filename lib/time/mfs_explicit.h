@@ -10,6 +10,8 @@
 
 #include <stddef.h>
 
+#include "mfs_status.h"
+
 #ifdef __cplusplus
 extern "C" {
 #endif
@@ -20,6 +22,27 @@ typedef enum {
   MFS_SCHEME_RK2,
   MFS_SCHEME_RK4
 } mfs_scheme;
+
+/* Name of a scheme ("leapfrog", "euler", "rk2", "rk4"); parse: MFS_EINVAL if unknown. */
+const char *mfs_scheme_name(mfs_scheme s);
+mfs_status mfs_scheme_parse(const char *name, mfs_scheme *s);
+
+/* End conditions of the 1D solvers: free, fixed, or a prescribed velocity. */
+typedef enum { MFS_BC_FREE, MFS_BC_FIXED, MFS_BC_VELOCITY } mfs_bc;
+
+/* The value at X of the field v sampled at the n points i dx, i = 0..n-1,
+ * by linear interpolation (the end values outside). */
+static inline double mfs_lerp_uniform(const double *v, size_t n, double dx, double X)
+{
+  double q = X / dx;
+  if (!(q > 0.0))
+    return v[0];
+  if (q >= (double)(n - 1))
+    return v[n - 1];
+  size_t i = (size_t)q;
+  double f = q - (double)i;
+  return (1.0 - f) * v[i] + f * v[i + 1];
+}
 
 /* a = a(u); MFS_OK or the caller's error status. */
 typedef int (*mfs_accel_fn)(void *ctx, const double *u, double *a);
@@ -35,9 +58,9 @@ typedef struct {
  * = a(u) at the new state.  impose may be NULL.  MFS_EINVAL for an unknown
  * scheme, MFS_EDOMAIN for a non-finite u or v after the step, else the
  * status of accel. */
-int mfs_explicit_step(mfs_scheme scheme, size_t n, double *u, double *v, double *a, double t,
-                      double dt, const mfs_explicit_work *w, mfs_accel_fn accel,
-                      mfs_impose_fn impose, void *ctx);
+mfs_status mfs_explicit_step(mfs_scheme scheme, size_t n, double *u, double *v, double *a,
+                             double t, double dt, const mfs_explicit_work *w, mfs_accel_fn accel,
+                             mfs_impose_fn impose, void *ctx);
 
 #ifdef __cplusplus
 }

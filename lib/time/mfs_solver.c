@@ -6,13 +6,20 @@
 #include <string.h>
 
 #include "mfs_bound.h"
+#include "mfs_eval.h"
 #include "mfs_neighbor.h"
+#include "mfs_plan.h"
 #include "mfs_status.h"
 
 struct mfs_solver_work {
   mfs_particles *p;
   mfs_quad *q;
   mfs_plan *pl;          /* Lagrangian table (order 1), built once */
+  const size_t *tptr;    /* its compressed rows (mfs_plan_table) */
+  const int *tidx;
+  const double *tab;
+  int nc;                /* doubles per table entry */
+  mfs_eval ev;           /* Eulerian: shape functions at the current positions */
   unsigned char *fixed;  /* n: displacement prescribed (fixed or velocity end) */
   double *f, *f0;        /* n: internal force, equilibration load */
   double *u0, *v0;       /* n: RK stage base */
@@ -23,32 +30,15 @@ struct mfs_solver_work {
   double *xb, *xqb;      /* positions at the last neighbour search */
   mfs_nlist *cand;       /* candidates within a + skin */
   size_t cap;            /* capacity of the per-point buffers */
-  double *d, *vol, *out, *swork;
+  double *out;
   int *loc;
   double a, skin;
 };
 
-static const char *const scheme_names[] = {"leapfrog", "euler", "rk2", "rk4"};
-
-const char *mfs_scheme_name(mfs_scheme s)
-{
-  return (unsigned)s < 4 ? scheme_names[s] : "?";
-}
-
-int mfs_scheme_parse(const char *name, mfs_scheme *s)
-{
-  for (int i = 0; i < 4; i++)
-    if (strcmp(name, scheme_names[i]) == 0) {
-      *s = (mfs_scheme)i;
-      return MFS_OK;
-    }
-  return MFS_EINVAL;
-}
-
 /* 1D St Venant-Kirchhoff with initial stress: P = F S, S = E (F^2-1)/2 + S0. */
-static inline double pk1(const mfs_solver_spec *sp, double F)
+static inline double pk1(const mfs_material *m, double F)
 {
-  return F * (0.5 * sp->modulus * (F * F - 1.0) + sp->initial_stress);
+  return F * (0.5 * m->modulus * (F * F - 1.0) + m->initial_stress);
 }
 
 /* Prescribed velocity of end k at time t. */
@@ -68,21 +58,22 @@ static double bc_disp(const mfs_solver_spec *sp, int k, double t)
 /* Lagrangian internal force, eqs 77-78. */
 static int force_lagrangian(mfs_solver *s, const double *u, double *f)
 {
-  const mfs_plan *pl = s->w->pl;
-  const size_t *ptr = pl->nl->ptr;
-  const int *idx = pl->nl->idx;
-  const double *tab = pl->tab;
+  const mfs_solver_work *w = s->w;
+  const size_t *ptr = w->tptr;
+  const int *idx = w->tidx;
+  enum { nc = 2 }; /* mfs_shape_ncomp(1, 1): (phi, phi') per entry, checked at alloc */
+  const double *tab = w->tab;
   memset(f, 0, s->n * sizeof *f);
   for (size_t Q = 0; Q < s->nq; Q++) {
     double F = 1.0;
     for (size_t e = ptr[Q]; e < ptr[Q + 1]; e++)
-      F += tab[2 * e + 1] * u[idx[e]];
-    double P = pk1(&s->spec, F);
+      F += tab[nc * e + 1] * u[idx[e]];
+    double P = pk1(&s->spec.disc.material, F);
     s->F[Q] = F;
     s->sigma[Q] = P;
     double wP = s->wq[Q] * P;
     for (size_t e = ptr[Q]; e < ptr[Q + 1]; e++)
-      f[idx[e]] += tab[2 * e + 1] * wP;
+      f[idx[e]] += tab[nc * e + 1] * wP;
   }
   return MFS_OK;
 }
@@ -91,7 +82,7 @@ static int force_lagrangian(mfs_solver *s, const double *u, double *f)
 static int search(mfs_solver *s)
 {
   mfs_solver_work *w = s->w;
-  int st;
+  mfs_status st;
   mfs_grid *g = mfs_grid_alloc(1, s->n, w->x, &w->p->box, w->a + w->skin, &st);
   if (!g)
     return st;
@@ -108,19 +99,11 @@ static int search(mfs_solver *s)
   }
   if (maxrow > w->cap) {
     size_t cap = 2 * maxrow;
-    double *d = realloc(w->d, cap * sizeof *d), *v = d ? realloc(w->vol, cap * sizeof *v) : NULL;
-    if (d)
-      w->d = d;
-    if (v)
-      w->vol = v;
-    double *o = v ? realloc(w->out, 2 * cap * sizeof *o) : NULL;
+    double *o = realloc(w->out, 2 * cap * sizeof *o);
     if (o)
       w->out = o;
-    double *sw = o ? realloc(w->swork, mfs_shape_work_len(1, (int)cap) * sizeof *sw) : NULL;
-    if (sw)
-      w->swork = sw;
-    int *l = sw ? realloc(w->loc, cap * sizeof *l) : NULL;
-    if (!l)
+    int *l = o ? realloc(w->loc, cap * sizeof *l) : NULL;
+    if (!l || mfs_eval_reserve(&w->ev, cap) != MFS_OK)
       return MFS_ENOMEM;
     w->loc = l;
     w->cap = cap;
@@ -159,7 +142,6 @@ static inline double max2(double a, double b)
 static int eulerian_positions(mfs_solver *s, const double *u)
 {
   mfs_solver_work *w = s->w;
-  const mfs_plan *pl = w->pl;
   const mfs_box *box = &w->p->box;
   const int *node = w->q->node;
   double *x = w->x, *xq = w->xq;
@@ -177,8 +159,8 @@ static int eulerian_positions(mfs_solver *s, const double *u)
       xq[Q] = x[node[Q]];
     } else { /* interpolated displacement, Lagrangian table */
       double uq = 0.0;
-      for (size_t e = pl->nl->ptr[Q]; e < pl->nl->ptr[Q + 1]; e++)
-        uq += pl->tab[2 * e] * u[pl->nl->idx[e]];
+      for (size_t e = w->tptr[Q]; e < w->tptr[Q + 1]; e++)
+        uq += w->tab[2 * e] * u[w->tidx[e]]; /* nc = 2 */
       xq[Q] = s->xq0[Q] + uq;
     }
     double dq = fabs(delta1(box, xqb[Q], xq[Q]));
@@ -192,121 +174,24 @@ static int eulerian_positions(mfs_solver *s, const double *u)
   return MFS_OK;
 }
 
-/* Eulerian internal force, 1D linear MLS: the arithmetic of mls_fast_order1
- * (mfs_shape.c) in the same order, fused with the gather of the neighbours
- * within a and the scatter of the force, so one pass over the candidates
- * and no per-point call.  Results as force_eulerian with mfs_shape_mls. */
-static int force_eulerian_mls1(mfs_solver *s, const double *u, double *f)
-{
-  mfs_solver_work *w = s->w;
-  const mfs_shape_ctx *c = &w->pl->ctx;
-  const mfs_box *box = &w->p->box;
-  void (*keval)(double, double *, double *, double *) = c->kernel->eval;
-  const int quartic = c->kernel == &mfs_kernel_quartic;
-  const double E = s->spec.modulus, S0 = s->spec.initial_stress, rcmin = c->rcond_min;
-  const double ia = 1.0 / c->a, cn = c->kernel->norm[0] * ia, a = w->a;
-  const double *x = w->x, *xq = w->xq, *wq = s->wq;
-  const size_t *ptr = w->cand->ptr;
-  const int *idx = w->cand->idx;
-  double *kW = w->out, *kpx = w->d, *kdphi = w->vol;
-  int *kJ = w->loc;
-  memset(f, 0, s->n * sizeof *f);
-  for (size_t Q = 0; Q < s->nq; Q++) {
-    const double xQ = xq[Q];
-    double a00 = 0, a01 = 0, a11 = 0, b00 = 0, b01 = 0, b11 = 0;
-    int nn = 0;
-    for (size_t e = ptr[Q]; e < ptr[Q + 1]; e++) {
-      int J = idx[e];
-      double dd = delta1(box, xQ, x[J]);
-      if (fabs(dd) >= a)
-        continue;
-      double px = dd * ia, z = fabs(px), wv = 0.0, dw = 0.0, d2w = 0.0;
-      if (z < 1.0) {
-        if (quartic) /* inline: no call through the table */
-          mfs_kernel_quartic_poly(z, &wv, &dw, &d2w);
-        else
-          keval(z, &wv, &dw, &d2w);
-      }
-      double W = cn * wv;
-      double t = z > 0.0 ? -cn * dw / z * ia : -cn * d2w * ia;
-      double gx = t * px;
-      a00 += W;
-      a01 += W * px;
-      a11 += W * px * px;
-      b00 += gx;
-      b01 += gx * px;
-      b11 += gx * px * px;
-      kW[2 * nn] = W;
-      kW[2 * nn + 1] = gx;
-      kpx[nn] = px;
-      kJ[nn] = J;
-      nn++;
-    }
-    double det = a00 * a11 - a01 * a01;
-    if (!(det > 0.0))
-      return MFS_ESINGULAR;
-    double i00 = a11 / det, i01 = -a01 / det, i11 = a00 / det;
-    double na = max2(fabs(a00) + fabs(a01), fabs(a01) + fabs(a11));
-    double ni = max2(fabs(i00) + fabs(i01), fabs(i01) + fabs(i11));
-    double rc = 1.0 / (na * ni);
-    if (!(rc >= rcmin) || rc == 0.0)
-      return MFS_ESINGULAR;
-    double g0 = i00, g1 = i01; /* dg = A^-1 (e1/a - dA g) */
-    double r0 = -(b00 * g0 + b01 * g1);
-    double r1 = ia - (b01 * g0 + b11 * g1);
-    double dg0 = i00 * r0 + i01 * r1, dg1 = i01 * r0 + i11 * r1;
-    double dudx = 0.0; /* eq. 68 */
-    for (int k = 0; k < nn; k++) {
-      double px = kpx[k];
-      double gp = g0 + g1 * px, dgp = dg0 + dg1 * px;
-      double dphi = dgp * kW[2 * k] + gp * kW[2 * k + 1];
-      kdphi[k] = dphi;
-      dudx += dphi * u[kJ[k]];
-    }
-    if (!(dudx < 1.0))
-      return MFS_EDOMAIN;
-    double F = 1.0 / (1.0 - dudx);
-    double sig = F * (0.5 * E * (F * F - 1.0) + S0);
-    s->F[Q] = F;
-    s->sigma[Q] = sig;
-    double Vs = wq[Q] * F * sig;
-    for (int k = 0; k < nn; k++)
-      f[kJ[k]] += kdphi[k] * Vs;
-  }
-  return MFS_OK;
-}
-
 /* Eulerian internal force, eqs 64-68: shape functions at the current
- * quadrature points, V_Q = w_Q F_Q, sigma = P. */
+ * quadrature points (the point evaluator on the candidates), V_Q = w_Q F_Q,
+ * sigma = P; for sph the volumes are the reference volumes V^0 (see header). */
 static int force_eulerian(mfs_solver *s, const double *u, double *f)
 {
   mfs_solver_work *w = s->w;
-  const mfs_plan *pl = w->pl;
-  const mfs_box *box = &w->p->box;
-  const double E = s->spec.modulus, S0 = s->spec.initial_stress;
+  const mfs_material *mat = &s->spec.disc.material;
+  const double E = mat->modulus, S0 = mat->initial_stress;
   int st = eulerian_positions(s, u);
   if (st != MFS_OK)
     return st;
-  if (pl->shape == &mfs_shape_mls && pl->ctx.dim == 1)
-    return force_eulerian_mls1(s, u, f);
   memset(f, 0, s->n * sizeof *f);
   const mfs_nlist *cl = w->cand;
   for (size_t Q = 0; Q < s->nq; Q++) {
-    int nn = 0, self = -1, node = w->q->node[Q];
-    for (size_t e = cl->ptr[Q]; e < cl->ptr[Q + 1]; e++) {
-      int J = cl->idx[e];
-      double dd = delta1(box, w->xq[Q], w->x[J]);
-      if (fabs(dd) >= w->a)
-        continue;
-      if (J == node)
-        self = nn;
-      w->d[nn] = dd;
-      w->vol[nn] = w->p->vol[J]; /* reference volume V^0 (see header) */
-      w->loc[nn] = J;
-      nn++;
-    }
-    double rc;
-    st = pl->shape->eval(&pl->ctx, nn, w->d, w->vol, self, 1, w->out, w->swork, &rc);
+    int nn;
+    size_t e0 = cl->ptr[Q];
+    st = mfs_eval_point(&w->ev, w->xq + Q, w->x, w->p->vol, cl->idx + e0, cl->ptr[Q + 1] - e0,
+                        w->q->node[Q], w->loc, w->out, &nn, NULL);
     if (st != MFS_OK)
       return st;
     double dudx = 0.0; /* eq. 68 */
@@ -327,7 +212,7 @@ static int force_eulerian(mfs_solver *s, const double *u, double *f)
 
 static int force(mfs_solver *s, const double *u, double *f)
 {
-  return s->spec.frame == MFS_FRAME_EULERIAN ? force_eulerian(s, u, f)
+  return s->spec.disc.frame == MFS_FRAME_EULERIAN ? force_eulerian(s, u, f)
                                               : force_lagrangian(s, u, f);
 }
 
@@ -350,7 +235,7 @@ static int accel(mfs_solver *s, const double *u, double *a)
 /* Impose the end conditions on u, v at time t. */
 static void impose(mfs_solver *s, double *u, double *v, double t)
 {
-  if (s->spec.periodic)
+  if (s->spec.disc.source.periodic)
     return;
   size_t end[2] = {0, s->n - 1};
   for (int k = 0; k < 2; k++) {
@@ -414,11 +299,9 @@ void mfs_solver_free(mfs_solver *s)
     mfs_quad_free(w->q);
     mfs_particles_free(w->p);
     mfs_nlist_free(w->cand);
+    mfs_eval_free(&w->ev);
     free(w->fixed);
-    free(w->d);
-    free(w->vol);
     free(w->out);
-    free(w->swork);
     free(w->loc);
     free(w);
   }
@@ -426,16 +309,16 @@ void mfs_solver_free(mfs_solver *s)
   free(s);
 }
 
-mfs_solver *mfs_solver_alloc(const mfs_solver_spec *spec, int *status, size_t *bad)
+mfs_solver *mfs_solver_alloc(const mfs_solver_spec *spec, mfs_status *status, size_t *bad)
 {
-  int st = MFS_EINVAL;
+  mfs_status st = MFS_EINVAL;
   mfs_solver *s = NULL;
-  mfs_quad_rule rule;
-  if (!spec || spec->n < 3 || !(spec->length > 0.0) || !(spec->density > 0.0) ||
-      !(spec->modulus > 0.0) || !isfinite(spec->initial_stress) || !spec->kernel ||
-      !spec->shape || !(spec->dilation > 0.0) || !spec->quadrature ||
-      mfs_quad_rule_parse(spec->quadrature, &rule) != MFS_OK ||
-      mfs_quad_rule_check(&rule, 1, MFS_LATTICE_LINE) != MFS_OK)
+  const mfs_disc *d = spec ? &spec->disc : NULL;
+  if (!spec || (st = mfs_disc_check(d, NULL)) != MFS_OK)
+    goto fail;
+  st = MFS_EINVAL;
+  if (d->dim != 1 || mfs_disc_infinite(d) || d->source.nx < 3 ||
+      d->frame == MFS_FRAME_EULERIAN_CONSISTENT || d->material.physics != MFS_PHYS_SCALAR)
     goto fail;
   st = MFS_ENOMEM;
   s = calloc(1, sizeof *s);
@@ -443,27 +326,21 @@ mfs_solver *mfs_solver_alloc(const mfs_solver_spec *spec, int *status, size_t *b
     goto fail;
   mfs_solver_work *w = s->w;
   s->spec = *spec;
-  s->spec.quadrature = NULL; /* not kept: the caller's string */
-  if (!(s->spec.rcond_min > 0.0))
-    s->spec.rcond_min = 1e-12;
-  size_t n = (size_t)spec->n;
+  size_t n = (size_t)d->source.nx;
   s->n = n;
-  s->dX = spec->length / (double)(spec->periodic ? n : n - 1);
-  mfs_lattice_spec ls = {.dim = 1,
-                         .lattice = MFS_LATTICE_LINE,
-                         .nx = spec->n,
-                         .ny = 1,
-                         .dx = s->dX,
-                         .gamma = 1.0,
-                         .periodic = spec->periodic,
-                         .cells = rule.cells};
-  if (!(w->p = mfs_lattice_alloc(&ls, &st)))
+  s->dX = mfs_disc_dx(d);
+  if ((st = mfs_disc_geometry(d, &w->p, &w->q)) != MFS_OK)
     goto fail;
-  if (!(w->q = mfs_quad_alloc(&rule, w->p, &st)))
+  if (!(w->pl = mfs_plan_alloc(d, w->p, w->q, &st)))
     goto fail;
-  mfs_plan_spec ps = {spec->kernel, spec->shape, spec->dilation, 1, s->spec.rcond_min};
-  if (!(w->pl = mfs_plan_alloc(&ps, w->p, w->q, &st, bad)))
+  if ((st = mfs_plan_tabulate(w->pl, 1, bad)) != MFS_OK)
     goto fail;
+  mfs_plan_table(w->pl, &w->tptr, &w->tidx, &w->tab);
+  w->nc = mfs_plan_ncomp(w->pl);
+  if (w->nc != 2) { /* the layout the force loops read */
+    st = MFS_EINVAL;
+    goto fail;
+  }
   st = MFS_ENOMEM;
   size_t nq = w->q->n;
   s->nq = nq;
@@ -497,16 +374,21 @@ mfs_solver *mfs_solver_alloc(const mfs_solver_spec *spec, int *status, size_t *b
   w->xqb = w->xq + nq;
   w->f = f;
   for (size_t I = 0; I < n; I++)
-    s->m[I] = spec->density * w->p->vol[I]; /* eq. 51 */
-  if (!spec->periodic) {
+    s->m[I] = d->material.density * w->p->vol[I]; /* eq. 51 */
+  if (!d->source.periodic) {
     w->fixed[0] = spec->bc[0] != MFS_BC_FREE;
     w->fixed[n - 1] = spec->bc[1] != MFS_BC_FREE;
   }
-  w->a = spec->dilation * s->dX;
+  w->a = d->dilation * s->dX;
   w->skin = (spec->skin > 0.0 ? spec->skin : 0.5) * s->dX;
-  if (spec->periodic && !(spec->length > 2.0 * (w->a + w->skin))) {
+  if (d->source.periodic && !(d->source.lx > 2.0 * (w->a + w->skin))) {
     st = MFS_ETOOSMALL;
     goto fail;
+  }
+  if (d->frame == MFS_FRAME_EULERIAN) {
+    if ((st = mfs_eval_init(&w->ev, d, w->a, 1, &w->p->box, 1)) != MFS_OK)
+      goto fail;
+    mfs_eval_fast(&w->ev, 1);
   }
   for (size_t I = 0; I < n; I++)
     w->x[I] = s->X[I];
@@ -519,8 +401,9 @@ mfs_solver *mfs_solver_alloc(const mfs_solver_spec *spec, int *status, size_t *b
       goto fail;
   }
   /* stable step: element bound with Cbar = E + S0 (eqs 81, 132) and power iteration */
-  mfs_material mat = {MFS_PHYS_SCALAR, spec->modulus + spec->initial_stress, 0.0,
-                      spec->density};
+  mfs_material mat = {.physics = MFS_PHYS_SCALAR,
+                      .modulus = d->material.modulus + d->material.initial_stress,
+                      .density = d->material.density};
   mfs_bound_result br;
   if (mat.modulus > 0.0 && mfs_bound_plan(w->pl, &mat, w->fixed, &br) == MFS_OK) {
     s->lambda_bound = br.lambda;
@@ -528,14 +411,8 @@ mfs_solver *mfs_solver_alloc(const mfs_solver_spec *spec, int *status, size_t *b
   }
   if ((st = power_lambda(s, &s->lambda_power)) != MFS_OK)
     goto fail;
-  /* The element bound is proven only where every phi_I > 0 (eq. 132) and can
-   * be far above lambda_max where some phi_I is tiny (MLS at free ends with
-   * nodal integration: 1e16 times); the power estimate converges to lambda_max
-   * from below.  Use the proven bound, but no more than 5% above the estimate. */
-  double lam = 1.05 * s->lambda_power;
-  if (s->negative_phi == 0 && s->lambda_bound > 0.0 && s->lambda_bound < lam)
-    lam = s->lambda_bound;
-  if (!(lam > 0.0) || !isfinite(lam)) {
+  double lam = mfs_step_lambda(s->lambda_power, s->lambda_bound, s->negative_phi);
+  if (isnan(lam)) {
     st = MFS_EDOMAIN;
     goto fail;
   }
@@ -551,7 +428,7 @@ fail:
   return NULL;
 }
 
-int mfs_solver_set_state(mfs_solver *s, const double *u, const double *v)
+mfs_status mfs_solver_set_state(mfs_solver *s, const double *u, const double *v)
 {
   for (size_t I = 0; I < s->n; I++) {
     s->u[I] = u ? u[I] : 0.0;
@@ -561,14 +438,14 @@ int mfs_solver_set_state(mfs_solver *s, const double *u, const double *v)
   return accel(s, s->u, s->a);
 }
 
-int mfs_solver_reset(mfs_solver *s)
+mfs_status mfs_solver_reset(mfs_solver *s)
 {
   s->t = 0.0;
   s->steps = 0;
   return mfs_solver_set_state(s, NULL, NULL);
 }
 
-int mfs_solver_set_dt(mfs_solver *s, double dt, int force_it)
+mfs_status mfs_solver_set_dt(mfs_solver *s, double dt, int force_it)
 {
   if (!(dt > 0.0) || !isfinite(dt) || (dt > s->dt_crit && !force_it))
     return MFS_EINVAL;
@@ -587,11 +464,11 @@ static void impose_cb(void *ctx, double *u, double *v, double t)
   impose(ctx, u, v, t);
 }
 
-int mfs_solver_step(mfs_solver *s, mfs_scheme scheme)
+mfs_status mfs_solver_step(mfs_solver *s, mfs_scheme scheme)
 {
   mfs_solver_work *w = s->w;
   mfs_explicit_work rk = {w->u0, w->v0, w->ku, w->kv, w->tu};
-  int st = mfs_explicit_step(scheme, s->n, s->u, s->v, s->a, s->t, s->dt, &rk, accel_cb,
+  mfs_status st = mfs_explicit_step(scheme, s->n, s->u, s->v, s->a, s->t, s->dt, &rk, accel_cb,
                              impose_cb, s);
   if (st == MFS_OK || st == MFS_EDOMAIN) { /* the step was taken */
     s->t += s->dt;
@@ -600,17 +477,18 @@ int mfs_solver_step(mfs_solver *s, mfs_scheme scheme)
   return st;
 }
 
-int mfs_solver_fields(mfs_solver *s)
+mfs_status mfs_solver_fields(mfs_solver *s)
 {
   return force(s, s->u, s->w->f);
 }
 
-int mfs_solver_energy(mfs_solver *s, double *kinetic, double *potential)
+mfs_status mfs_solver_energy(mfs_solver *s, double *kinetic, double *potential)
 {
-  int st = mfs_solver_fields(s);
+  mfs_status st = mfs_solver_fields(s);
   if (st != MFS_OK)
     return st;
-  double k = 0.0, p = 0.0, E = s->spec.modulus, S0 = s->spec.initial_stress;
+  double k = 0.0, p = 0.0, E = s->spec.disc.material.modulus,
+         S0 = s->spec.disc.material.initial_stress;
   for (size_t I = 0; I < s->n; I++)
     k += 0.5 * s->m[I] * s->v[I] * s->v[I];
   for (size_t Q = 0; Q < s->nq; Q++) {

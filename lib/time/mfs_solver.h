@@ -38,39 +38,25 @@
 
 #include <stddef.h>
 
-#include "mfs_assemble.h"
-#include "mfs_dispersion.h"
+#include "mfs_disc.h"
 #include "mfs_explicit.h"
+#include "mfs_status.h"
 
 #ifdef __cplusplus
 extern "C" {
 #endif
 
-typedef enum { MFS_BC_FREE, MFS_BC_FIXED, MFS_BC_VELOCITY } mfs_bc;
-
-
-/* Name of a scheme ("leapfrog", "euler", "rk2", "rk4"); parse: MFS_EINVAL if unknown. */
-const char *mfs_scheme_name(mfs_scheme s);
-int mfs_scheme_parse(const char *name, mfs_scheme *s);
-
+/* The rod: disc with a finite 1D source (disc.source.nx particles on
+ * [0, disc.source.lx], spacing lx/(nx-1), periodic lx/nx), disc.material
+ * (modulus E, density rho0, initial_stress S0), kernel, dilation, shape,
+ * frame (lagrangian or eulerian), quadrature (nodal, stress, gaussN), plus: */
 typedef struct {
-  int n;               /* particles (>= 3) */
-  double length;       /* rod length L: spacing L/(n-1), periodic L/n */
-  int periodic;
-  double density;      /* rho0 > 0 */
-  double modulus;      /* E > 0 */
-  double initial_stress; /* S0 */
-  const mfs_kernel_type *kernel;
-  const mfs_shape_type *shape;
-  double dilation;     /* D: support radius a = D dX */
-  mfs_frame frame;
-  const char *quadrature; /* nodal, stress, gaussN */
-  mfs_bc bc[2];        /* left, right (ignored when periodic) */
+  mfs_disc disc;
+  mfs_bc bc[2];          /* left, right (ignored when periodic) */
   double bc_velocity[2]; /* prescribed velocity of MFS_BC_VELOCITY */
-  double bc_until[2];  /* ... applied for t <= until, then 0 (use INFINITY for always) */
-  int equilibrate;     /* apply -f_int(u = 0) as a constant load */
-  double rcond_min;    /* singular moment matrix threshold (0: 1e-12) */
-  double skin;         /* Eulerian neighbour skin, in dX (0: 0.5) */
+  double bc_until[2];    /* ... applied for t <= until, then 0 (use INFINITY for always) */
+  int equilibrate;       /* apply -f_int(u = 0) as a constant load */
+  double skin;           /* Eulerian neighbour skin, in dX (0: 0.5) */
 } mfs_solver_spec;
 
 typedef struct mfs_solver_work mfs_solver_work;
@@ -101,32 +87,32 @@ typedef struct {
  * state u = v = 0, t = 0, dt = 0.9 dt_crit.  NULL with *status on failure
  * (MFS_EINVAL bad spec, MFS_ESINGULAR singular moment matrix at quadrature
  * point *bad, MFS_ETOOSMALL, MFS_ENOMEM). */
-mfs_solver *mfs_solver_alloc(const mfs_solver_spec *spec, int *status, size_t *bad);
+mfs_solver *mfs_solver_alloc(const mfs_solver_spec *spec, mfs_status *status, size_t *bad);
 void mfs_solver_free(mfs_solver *s);
 
 /* Back to u = v = 0, t = 0, steps = 0 (dt kept). */
-int mfs_solver_reset(mfs_solver *s);
+mfs_status mfs_solver_reset(mfs_solver *s);
 
 /* Copy a state (NULL: zero) and evaluate the acceleration; the boundary
  * conditions are imposed.  MFS_OK, MFS_EDOMAIN, MFS_ESINGULAR. */
-int mfs_solver_set_state(mfs_solver *s, const double *u, const double *v);
+mfs_status mfs_solver_set_state(mfs_solver *s, const double *u, const double *v);
 
 /* Set the step.  MFS_EINVAL if dt <= 0, or dt > dt_crit and !force. */
-int mfs_solver_set_dt(mfs_solver *s, double dt, int force);
+mfs_status mfs_solver_set_dt(mfs_solver *s, double dt, int force);
 
 /* One step of the scheme.  MFS_OK; MFS_EDOMAIN on a non-finite value or an
  * inverted deformation (F <= 0); MFS_ESINGULAR (Eulerian MLS at a collapsed
  * configuration); MFS_ENOMEM (neighbour search). */
-int mfs_solver_step(mfs_solver *s, mfs_scheme scheme);
+mfs_status mfs_solver_step(mfs_solver *s, mfs_scheme scheme);
 
 /* Recompute F and sigma at the quadrature points for the current u. */
-int mfs_solver_fields(mfs_solver *s);
+mfs_status mfs_solver_fields(mfs_solver *s);
 
 /* Kinetic energy 1/2 sum m v^2 and the potential: strain energy
  * sum_Q w_Q psi(F_Q), psi = S0 (F^2-1)/2 + E (F^2-1)^2 / 8 (dpsi/dF = P),
  * minus the work of the equilibration load.  Conserved by the exact
  * Lagrangian dynamics with free or fixed ends.  Uses F from the current u. */
-int mfs_solver_energy(mfs_solver *s, double *kinetic, double *potential);
+mfs_status mfs_solver_energy(mfs_solver *s, double *kinetic, double *potential);
 
 /* Index of the particle nearest to coordinate X. */
 size_t mfs_solver_nearest(const mfs_solver *s, double X);

@@ -78,11 +78,11 @@ void mfs_solver2d_free(mfs_solver2d *s)
   free(s);
 }
 
-mfs_solver2d *mfs_solver2d_alloc(const mfs_model_spec *spec, int *status, size_t *bad)
+mfs_solver2d *mfs_solver2d_alloc(const mfs_model_spec *spec, mfs_status *status, size_t *bad)
 {
-  int st = MFS_EINVAL;
+  mfs_status st = MFS_EINVAL;
   mfs_solver2d *s = NULL;
-  if (!spec || spec->consistent_mass)
+  if (!spec || spec->disc.consistent_mass)
     goto fail;
   st = MFS_ENOMEM;
   if (!(s = calloc(1, sizeof *s)) || !(s->w = calloc(1, sizeof *s->w)))
@@ -118,18 +118,15 @@ mfs_solver2d *mfs_solver2d_alloc(const mfs_model_spec *spec, int *status, size_t
     X[i] = md->p->x[particle * (size_t)dim];
     Y[i] = dim > 1 ? md->p->x[particle * (size_t)dim + 1] : 0.0;
   }
-  /* stable step: the proven element bound (eq. 124) if below 1.05 times
-   * the power estimate (see mfs_solver.c on why both) */
+  /* stable step: the rule of mfs_step_lambda (mfs_bound.h) */
   mfs_bound_result br;
   if (mfs_bound_of_model(md, &br) == MFS_OK) {
     s->lambda_bound = br.lambda;
     s->negative_phi = br.negative_phi;
   }
   s->lambda_power = power_lambda(s);
-  double lam = 1.05 * s->lambda_power;
-  if (s->negative_phi == 0 && s->lambda_bound > 0.0 && s->lambda_bound < lam)
-    lam = s->lambda_bound;
-  if (!(lam > 0.0) || !isfinite(lam)) {
+  double lam = mfs_step_lambda(s->lambda_power, s->lambda_bound, s->negative_phi);
+  if (isnan(lam)) {
     st = MFS_EDOMAIN;
     goto fail;
   }
@@ -152,7 +149,7 @@ void mfs_solver2d_reset(mfs_solver2d *s)
   s->steps = 0;
 }
 
-int mfs_solver2d_set_state(mfs_solver2d *s, const double *u, const double *v)
+mfs_status mfs_solver2d_set_state(mfs_solver2d *s, const double *u, const double *v)
 {
   for (size_t i = 0; i < s->n; i++)
     if ((u && !isfinite(u[i])) || (v && !isfinite(v[i])))
@@ -164,7 +161,7 @@ int mfs_solver2d_set_state(mfs_solver2d *s, const double *u, const double *v)
   return accel(s, s->u, s->a);
 }
 
-int mfs_solver2d_set_dt(mfs_solver2d *s, double dt, int force)
+mfs_status mfs_solver2d_set_dt(mfs_solver2d *s, double dt, int force)
 {
   if (!(dt > 0.0) || !isfinite(dt) || (dt > s->dt_crit && !force))
     return MFS_EINVAL;
@@ -178,11 +175,11 @@ static int accel_cb(void *ctx, const double *u, double *a)
   return accel(ctx, u, a);
 }
 
-int mfs_solver2d_step(mfs_solver2d *s, mfs_scheme scheme)
+mfs_status mfs_solver2d_step(mfs_solver2d *s, mfs_scheme scheme)
 {
   mfs_solver2d_work *w = s->w;
   mfs_explicit_work rk = {w->u0, w->v0, w->ku, w->kv, w->tu};
-  int st = mfs_explicit_step(scheme, s->n, s->u, s->v, s->a, s->t, s->dt, &rk, accel_cb, NULL, s);
+  mfs_status st = mfs_explicit_step(scheme, s->n, s->u, s->v, s->a, s->t, s->dt, &rk, accel_cb, NULL, s);
   if (st == MFS_OK || st == MFS_EDOMAIN) { /* the step was taken */
     s->t += s->dt;
     s->steps++;
@@ -230,9 +227,9 @@ static int nearest1(double x, double h, int n, int periodic)
 size_t mfs_solver2d_nearest(const mfs_solver2d *s, double x, double y)
 {
   const mfs_model *md = s->model;
-  const mfs_model_spec *sp = &md->spec;
+  const mfs_source *sp = &md->spec.disc.source;
   size_t i = (size_t)nearest1(x, md->dx, sp->nx, sp->periodic);
-  if (sp->dim == 1)
+  if (md->spec.disc.dim == 1)
     return i;
   size_t j = (size_t)nearest1(y, md->dy, sp->ny, sp->periodic);
   return j * (size_t)sp->nx + i; /* mfs_lattice_alloc's order */

@@ -42,8 +42,9 @@
 
 #include <stddef.h>
 
+#include "mfs_explicit.h"
 #include "mfs_model.h"
-#include "mfs_solver.h"
+#include "mfs_status.h"
 
 #ifdef __cplusplus
 extern "C" {
@@ -76,7 +77,7 @@ typedef struct {
  * MFS_ETOOSMALL, MFS_ESINGULAR (singular moment matrix at quadrature point
  * *bad, if bad is not NULL), MFS_EDOMAIN (no positive finite lambda_max:
  * K = 0), MFS_ENOMEM. */
-mfs_solver2d *mfs_solver2d_alloc(const mfs_model_spec *spec, int *status, size_t *bad);
+mfs_solver2d *mfs_solver2d_alloc(const mfs_model_spec *spec, mfs_status *status, size_t *bad);
 void mfs_solver2d_free(mfs_solver2d *s);
 
 /* Back to u = v = a = 0, t = 0, steps = 0 (dt kept). */
@@ -85,15 +86,15 @@ void mfs_solver2d_reset(mfs_solver2d *s);
 /* Copy a state (NULL: zero; n values each) and evaluate a = -M^-1 K u.
  * MFS_OK, or MFS_EDOMAIN for a non-finite value (the state is then left
  * unchanged). */
-int mfs_solver2d_set_state(mfs_solver2d *s, const double *u, const double *v);
+mfs_status mfs_solver2d_set_state(mfs_solver2d *s, const double *u, const double *v);
 
 /* Set the step.  MFS_EINVAL if dt <= 0 or not finite, or dt > dt_crit and
  * !force. */
-int mfs_solver2d_set_dt(mfs_solver2d *s, double dt, int force);
+mfs_status mfs_solver2d_set_dt(mfs_solver2d *s, double dt, int force);
 
 /* One step of the scheme.  MFS_OK; MFS_EINVAL for an unknown scheme;
  * MFS_EDOMAIN on a non-finite value (an unstable run that overflowed). */
-int mfs_solver2d_step(mfs_solver2d *s, mfs_scheme scheme);
+mfs_status mfs_solver2d_step(mfs_solver2d *s, mfs_scheme scheme);
 
 /* Kinetic 1/2 v^T M v and potential 1/2 u^T K u energies, and the modified
  * energy kinetic + potential - dt^2/8 a^T M a that the leapfrog conserves;

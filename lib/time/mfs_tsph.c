@@ -35,7 +35,7 @@ const char *mfs_tsph_scheme_name(mfs_tsph_scheme s)
   return (unsigned)s < 4 ? scheme_names[s] : "?";
 }
 
-int mfs_tsph_scheme_parse(const char *name, mfs_tsph_scheme *s)
+mfs_status mfs_tsph_scheme_parse(const char *name, mfs_tsph_scheme *s)
 {
   for (int k = 0; k < 4; k++)
     if (name && strcmp(name, scheme_names[k]) == 0) {
@@ -159,10 +159,10 @@ void mfs_tsph_free(mfs_tsph *s)
 
 static int spec_ok(const mfs_tsph_spec *sp)
 {
-  if (sp->n < 3 || sp->n > 100000000 || !(sp->length > 0) || !(sp->density > 0) ||
-      !(sp->modulus > 0) || !(sp->yield_stress > 0) || !(sp->fluidity >= 0) ||
+  if (sp->disc.source.nx < 3 || sp->disc.source.nx > 100000000 || !(sp->disc.source.lx > 0) || !(sp->disc.material.density > 0) ||
+      !(sp->disc.material.modulus > 0) || !(sp->yield_stress > 0) || !(sp->fluidity >= 0) ||
       !isfinite(sp->fluidity) || !(sp->exponent >= 0) || !isfinite(sp->hardening) ||
-      !(sp->dilation > 0) || !isfinite(sp->dilation) || (unsigned)sp->scheme > MFS_TSPH_RK4 ||
+      !(sp->disc.dilation > 0) || !isfinite(sp->disc.dilation) || (unsigned)sp->scheme > MFS_TSPH_RK4 ||
       !(sp->viscosity >= 0) || !isfinite(sp->viscosity))
     return 0;
   for (int k = 0; k < 2; k++)
@@ -171,9 +171,9 @@ static int spec_ok(const mfs_tsph_spec *sp)
   return 1;
 }
 
-mfs_tsph *mfs_tsph_alloc(const mfs_tsph_spec *spec, int *status)
+mfs_tsph *mfs_tsph_alloc(const mfs_tsph_spec *spec, mfs_status *status)
 {
-  int st = MFS_ENOMEM;
+  mfs_status st = MFS_ENOMEM;
   mfs_tsph *s = NULL;
   if (!spec || !spec_ok(spec)) {
     st = MFS_EINVAL;
@@ -184,14 +184,14 @@ mfs_tsph *mfs_tsph_alloc(const mfs_tsph_spec *spec, int *status)
     goto fail;
   mfs_tsph_work *w = s->w;
   s->spec = *spec;
-  if (!s->spec.kernel)
-    s->spec.kernel = &mfs_kernel_cubic;
-  size_t n = (size_t)spec->n;
+  if (!s->spec.disc.kernel)
+    s->spec.disc.kernel = &mfs_kernel_cubic; /* eq. 24 */
+  size_t n = (size_t)spec->disc.source.nx;
   int taylor = spec->scheme == MFS_TSPH_TAYLOR;
   size_t nv = taylor ? n - 1 : 0;
   s->n = n;
   s->nv = nv;
-  s->dx = spec->length / (double)(n - 1);
+  s->dx = spec->disc.source.lx / (double)(n - 1);
   w->X = malloc(n * sizeof *w->X);
   w->vol = malloc(n * sizeof *w->vol);
   w->Xv = malloc((n - 1) * sizeof *w->Xv);
@@ -203,7 +203,7 @@ mfs_tsph *mfs_tsph_alloc(const mfs_tsph_spec *spec, int *status)
   if (!w->X || !w->vol || !w->Xv || !w->volv || !w->U || !w->U0 || !w->tmp || !w->q)
     goto fail;
   for (size_t I = 0; I < n; I++) {
-    w->X[I] = spec->length * (double)I / (double)(n - 1);
+    w->X[I] = spec->disc.source.lx * (double)I / (double)(n - 1);
     w->vol[I] = (I == 0 || I == n - 1) ? 0.5 * s->dx : s->dx; /* Voronoi on [0, L] */
   }
   for (size_t J = 0; J + 1 < n; J++) {
@@ -211,14 +211,14 @@ mfs_tsph *mfs_tsph_alloc(const mfs_tsph_spec *spec, int *status)
     w->volv[J] = s->dx; /* Voronoi of the midpoints on [0, L] */
   }
   if (taylor) {
-    double a = spec->dilation * 0.5 * s->dx;
+    double a = spec->disc.dilation * 0.5 * s->dx;
     int lin = spec->linear_interpolation;
-    if ((st = op_build(&w->rv, s->spec.kernel, a, w->Xv, nv, w->X, w->vol, n, lin)) != MFS_OK ||
-        (st = op_build(&w->vr, s->spec.kernel, a, w->X, n, w->Xv, w->volv, nv, lin)) != MFS_OK)
+    if ((st = op_build(&w->rv, s->spec.disc.kernel, a, w->Xv, nv, w->X, w->vol, n, lin)) != MFS_OK ||
+        (st = op_build(&w->vr, s->spec.disc.kernel, a, w->X, n, w->Xv, w->volv, nv, lin)) != MFS_OK)
       goto fail;
   } else {
-    double a = spec->dilation * s->dx;
-    if ((st = op_build(&w->rr, s->spec.kernel, a, w->X, n, w->X, w->vol, n,
+    double a = spec->disc.dilation * s->dx;
+    if ((st = op_build(&w->rr, s->spec.disc.kernel, a, w->X, n, w->X, w->vol, n,
                        spec->linear_interpolation)) != MFS_OK)
       goto fail;
   }
@@ -231,7 +231,7 @@ mfs_tsph *mfs_tsph_alloc(const mfs_tsph_spec *spec, int *status)
   s->evp = w->U + 3 * n;
   for (size_t I = 0; I < n; I++)
     w->U0[2 * n + I] = spec->yield_stress;
-  s->dt_cfl = s->dx / sqrt(spec->modulus / spec->density);
+  s->dt_cfl = s->dx / sqrt(spec->disc.material.modulus / spec->disc.material.density);
   s->dt = s->dt_cfl;
   mfs_tsph_reset(s);
   *status = MFS_OK;
@@ -285,7 +285,7 @@ static int prescribed(const mfs_tsph *s, size_t I, int which, double t, double *
   return 0;
 }
 
-int mfs_tsph_reset(mfs_tsph *s)
+mfs_status mfs_tsph_reset(mfs_tsph *s)
 {
   if (!s)
     return MFS_EINVAL;
@@ -296,7 +296,7 @@ int mfs_tsph_reset(mfs_tsph *s)
   return MFS_OK;
 }
 
-int mfs_tsph_set_state(mfs_tsph *s, const double *sigma, const double *v)
+mfs_status mfs_tsph_set_state(mfs_tsph *s, const double *sigma, const double *v)
 {
   if (!s)
     return MFS_EINVAL;
@@ -313,7 +313,7 @@ int mfs_tsph_set_state(mfs_tsph *s, const double *sigma, const double *v)
   return mfs_tsph_reset(s);
 }
 
-int mfs_tsph_set_dt(mfs_tsph *s, double dt)
+mfs_status mfs_tsph_set_dt(mfs_tsph *s, double dt)
 {
   if (!s || !(dt > 0.0) || !isfinite(dt))
     return MFS_EINVAL;
@@ -337,7 +337,7 @@ static int source(const mfs_tsph_spec *sp, double sigma, double sy, double *ss, 
   double phi = sp->exponent == 0.0 ? 1.0 : pow((f - sy) / sy, sp->exponent);
   double rate = sp->fluidity * phi;
   *sev = rate;
-  *ss = -sp->modulus * (sigma > 0 ? rate : -rate);
+  *ss = -sp->disc.material.modulus * (sigma > 0 ? rate : -rate);
   *ssy = sp->hardening * rate;
   return MFS_OK;
 }
@@ -348,7 +348,7 @@ static int taylor_step(mfs_tsph *s)
   const mfs_tsph_spec *sp = &s->spec;
   size_t n = s->n, nv = s->nv;
   double *sig = w->U, *v = w->U + n, *sy = w->U + 2 * n, *ev = w->U + 3 * n;
-  double E = sp->modulus, rho = sp->density, dt = s->dt;
+  double E = sp->disc.material.modulus, rho = sp->disc.material.density, dt = s->dt;
   double eta = sp->viscosity * rho * sqrt(E / rho) * s->dx;
   /* real-particle sources at t^n */
   double *Ss = w->tmp, *Ssy = Ss + n, *Sev = Ssy + n;
@@ -394,7 +394,7 @@ static int rhs(const mfs_tsph *s, const double *Y, double *K)
   const mfs_tsph_spec *sp = &s->spec;
   size_t n = s->n;
   const op *o = &s->w->rr;
-  double eta = sp->viscosity * sp->density * sqrt(sp->modulus / sp->density) * s->dx;
+  double eta = sp->viscosity * sp->disc.material.density * sqrt(sp->disc.material.modulus / sp->disc.material.density) * s->dx;
   double *q = s->w->q, *vxs = q + n, dummy;
   for (size_t I = 0; I < n; I++) {
     vxs[I] = op_grad(o, I, Y + n, Y[n + I]);
@@ -405,8 +405,8 @@ static int rhs(const mfs_tsph *s, const double *Y, double *K)
     if (source(sp, Y[I], Y[2 * n + I], &ss, &ssy, &sev) != MFS_OK)
       return MFS_EDOMAIN;
     double sx = op_grad(o, I, q, q[I]), vx = vxs[I];
-    K[I] = prescribed(s, I, 0, 0.0, &dummy) ? 0.0 : sp->modulus * vx + ss;
-    K[n + I] = prescribed(s, I, 1, 0.0, &dummy) ? 0.0 : sx / sp->density;
+    K[I] = prescribed(s, I, 0, 0.0, &dummy) ? 0.0 : sp->disc.material.modulus * vx + ss;
+    K[n + I] = prescribed(s, I, 1, 0.0, &dummy) ? 0.0 : sx / sp->disc.material.density;
     K[2 * n + I] = ssy;
     K[3 * n + I] = sev;
   }
@@ -429,7 +429,7 @@ static int rk_step(mfs_tsph *s)
   size_t m = 4 * s->n;
   double *U = s->w->U, *Y = s->w->tmp, *k1 = Y + m, *k2 = k1 + m, *k3 = k2 + m, *k4 = k3 + m;
   double t = s->t, dt = s->dt;
-  int st;
+  mfs_status st;
   if ((st = rhs(s, U, k1)) != MFS_OK)
     return st;
   switch (s->spec.scheme) {
@@ -455,7 +455,7 @@ static int rk_step(mfs_tsph *s)
   return MFS_OK;
 }
 
-int mfs_tsph_step(mfs_tsph *s)
+mfs_status mfs_tsph_step(mfs_tsph *s)
 {
   if (!s)
     return MFS_EINVAL;
@@ -473,22 +473,15 @@ int mfs_tsph_step(mfs_tsph *s)
 
 double mfs_tsph_velocity_at(const mfs_tsph *s, double X)
 {
-  double q = X / s->dx;
-  if (!(q > 0.0))
-    return s->v[0];
-  if (q >= (double)(s->n - 1))
-    return s->v[s->n - 1];
-  size_t I = (size_t)q;
-  double f = q - (double)I;
-  return (1.0 - f) * s->v[I] + f * s->v[I + 1];
+  return mfs_lerp_uniform(s->v, s->n, s->dx, X);
 }
 
 void mfs_tsph_energy(const mfs_tsph *s, double *kinetic, double *potential)
 {
   double k = 0.0, p = 0.0;
   for (size_t I = 0; I < s->n; I++) {
-    k += 0.5 * s->spec.density * s->vol[I] * s->v[I] * s->v[I];
-    p += 0.5 * s->vol[I] * s->sigma[I] * s->sigma[I] / s->spec.modulus;
+    k += 0.5 * s->spec.disc.material.density * s->vol[I] * s->v[I] * s->v[I];
+    p += 0.5 * s->vol[I] * s->sigma[I] * s->sigma[I] / s->spec.disc.material.modulus;
   }
   *kinetic = k;
   *potential = p;
@@ -546,11 +539,11 @@ static double complex rk_poly(int deg, double complex z)
 static double growth(const mfs_tsph *s, double dt)
 {
   const mfs_tsph_spec *sp = &s->spec;
-  double E = sp->modulus, rho = sp->density, dx = s->dx;
+  double E = sp->disc.material.modulus, rho = sp->disc.material.density, dx = s->dx;
   double eta = sp->viscosity * rho * sqrt(E / rho) * dx;
   int taylor = sp->scheme == MFS_TSPH_TAYLOR;
   int deg = sp->scheme == MFS_TSPH_EULER ? 1 : sp->scheme == MFS_TSPH_RK2 ? 2 : 4;
-  double a = taylor ? sp->dilation * 0.5 * dx : sp->dilation * dx;
+  double a = taylor ? sp->disc.dilation * 0.5 * dx : sp->disc.dilation * dx;
   double gmax = 0.0;
   const int nth = 512;
   for (int i = 0; i <= nth; i++) {
@@ -559,14 +552,14 @@ static double growth(const mfs_tsph *s, double dt)
     if (taylor) {
       /* real -> virtual and virtual -> real: the same half-integer offsets;
        * G = I + Mt, Mt = dt D (P A + dt/2 D A^2 + [0 0; 0 eta D/rho]) */
-      symbols(sp->kernel, a, dx, 0.5, th, &P, &D);
+      symbols(sp->disc.kernel, a, dx, 0.5, th, &P, &D);
       double complex h = 0.5 * dt * D * E / rho;
       eig2(dt * D * h, dt * D * P * E, dt * D * P / rho, dt * D * (h + eta * D / rho), &l1, &l2);
       g1 = 1.0 + l1;
       g2 = 1.0 + l2;
     } else {
       /* G = R(dt L), L = [0 E D; D/rho eta D^2/rho] */
-      symbols(sp->kernel, a, dx, 0.0, th, &P, &D);
+      symbols(sp->disc.kernel, a, dx, 0.0, th, &P, &D);
       eig2(0.0, dt * E * D, dt * D / rho, dt * eta * D * D / rho, &l1, &l2);
       g1 = rk_poly(deg, l1);
       g2 = rk_poly(deg, l2);

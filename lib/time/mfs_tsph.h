@@ -68,8 +68,10 @@
 
 #include <stddef.h>
 
+#include "mfs_disc.h"
+#include "mfs_explicit.h"
 #include "mfs_kernel.h"
-#include "mfs_solver.h"
+#include "mfs_status.h"
 
 #ifdef __cplusplus
 extern "C" {
@@ -79,19 +81,19 @@ typedef enum { MFS_TSPH_TAYLOR, MFS_TSPH_EULER, MFS_TSPH_RK2, MFS_TSPH_RK4 } mfs
 
 /* Name ("tsph", "euler", "rk2", "rk4"); parse: MFS_EINVAL if unknown. */
 const char *mfs_tsph_scheme_name(mfs_tsph_scheme s);
-int mfs_tsph_scheme_parse(const char *name, mfs_tsph_scheme *s);
+mfs_status mfs_tsph_scheme_parse(const char *name, mfs_tsph_scheme *s);
 
+/* The bar: disc with a finite 1D source (disc.source.nx >= 3 real
+ * particles on [0, disc.source.lx], m), disc.material (density rho, modulus
+ * E; kg/m^3, Pa), disc.kernel (the cubic B-spline of eq. 24 in the paper)
+ * and disc.dilation (D > 0: a = D dx/2 (taylor), D dx (others)); the shape,
+ * quadrature and frame of disc do not enter (the scheme fixes them).  Plus: */
 typedef struct {
-  int n;                  /* real particles (>= 3) */
-  double length;          /* L (m) */
-  double density;         /* rho > 0 (kg/m^3) */
-  double modulus;         /* E > 0 (Pa) */
+  mfs_disc disc;
   double yield_stress;    /* initial sy > 0 (Pa); INFINITY: elastic */
   double fluidity;        /* gamma >= 0 (1/s) */
   double exponent;        /* Perzyna N >= 0 */
   double hardening;       /* H (Pa); < 0 softening */
-  const mfs_kernel_type *kernel; /* NULL: cubic B-spline (eq. 24) */
-  double dilation;        /* D > 0: a = D dx/2 (taylor), D dx (others) */
   mfs_tsph_scheme scheme;
   double viscosity;       /* artificial viscosity alpha >= 0 (0: the paper) */
   int linear_interpolation; /* 0: eq. 30 (Shepard, the paper); 1: eq. 30 plus
@@ -127,20 +129,20 @@ typedef struct {
  * (MFS_EINVAL bad spec; MFS_ESINGULAR a particle whose support holds no
  * particle of the other set, or no neighbour on two sides for the
  * gradient normalization; MFS_ENOMEM). */
-mfs_tsph *mfs_tsph_alloc(const mfs_tsph_spec *spec, int *status);
+mfs_tsph *mfs_tsph_alloc(const mfs_tsph_spec *spec, mfs_status *status);
 void mfs_tsph_free(mfs_tsph *s);
 
 /* Back to the initial state at t = 0, steps = 0 (dt kept). */
-int mfs_tsph_reset(mfs_tsph *s);
+mfs_status mfs_tsph_reset(mfs_tsph *s);
 
 /* Copy a state of the real particles (NULL: zero) at t = 0 and impose the
  * boundary values.  MFS_OK or MFS_EDOMAIN (non-finite). */
-int mfs_tsph_set_state(mfs_tsph *s, const double *sigma, const double *v);
+mfs_status mfs_tsph_set_state(mfs_tsph *s, const double *sigma, const double *v);
 
 /* MFS_EINVAL if dt <= 0 or not finite.  No stability check: the caller
  * decides (Taylor step: c dt <= dx at D = 2; forward Euler is unstable
  * for any dt on this central operator). */
-int mfs_tsph_set_dt(mfs_tsph *s, double dt);
+mfs_status mfs_tsph_set_dt(mfs_tsph *s, double dt);
 
 /* The von Neumann stable step of the interior scheme (see above), in
  * seconds; 0 when no positive step is stable (euler, rk2 without
@@ -151,7 +153,7 @@ double mfs_tsph_dt_stable(const mfs_tsph *s);
 
 /* One step of spec.scheme.  MFS_OK; MFS_EDOMAIN on a non-finite value or a
  * yield stress driven to <= 0 by softening. */
-int mfs_tsph_step(mfs_tsph *s);
+mfs_status mfs_tsph_step(mfs_tsph *s);
 
 /* Velocity at coordinate X by linear interpolation between real particles. */
 double mfs_tsph_velocity_at(const mfs_tsph *s, double X);

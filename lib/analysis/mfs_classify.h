@@ -1,0 +1,75 @@
+/* Stability classification of a discretization on the infinite lattice,
+ * from its dispersion relation (mfs_dispersion.h): for each normalized
+ * initial stress sbar, the smallest omega^2 over the sampled Brillouin zone
+ * and where, the unstable wave numbers and the largest growth rate, the
+ * spurious zero-energy modes (omega^2 = 0 away from the reciprocal lattice),
+ * the onset stresses in tension and compression, and the labels
+ *
+ *   material         the tangent modulus C + sbar (1D Lagrangian: F^2 + sbar)
+ *                    is not positive: the continuum itself is unstable
+ *   tensile          some wave is unstable while the continuum is not
+ *   rank-deficiency  spurious zero-energy modes at sbar = 0
+ *   stable           none of these
+ *
+ * Thresholds are relative to the largest |omega^2| at sbar = 0 over 201
+ * samples per ray (scale): omega^2 < -1e-10 scale is unstable, |omega^2| <=
+ * 1e-10 scale a zero, a growth |Im sqrt(omega^2)| > sqrt(1e-10 scale)
+ * unstable.  Onsets: bisection (50 halvings) of the smallest |sbar| with some
+ * omega^2 < -tol, searched up to sbar = 10 in tension and 1 in compression. */
+#ifndef MFS_CLASSIFY_H
+#define MFS_CLASSIFY_H
+
+#include <stddef.h>
+
+#include "mfs_dispersion.h"
+#include "mfs_status.h"
+
+#ifdef __cplusplus
+extern "C" {
+#endif
+
+enum { MFS_LABEL_MATERIAL = 1, MFS_LABEL_TENSILE = 2, MFS_LABEL_RANK_DEFICIENCY = 4 };
+
+/* Where the relation is sampled: angles theta[0..ntheta) (radians; 1D: one
+ * angle, ignored), and on each ray either the kappa values given (kappa dx
+ * / pi, kappa != NULL) or npoints uniform on [0, kappa_max(theta)]. */
+typedef struct {
+  const double *theta;
+  size_t ntheta;
+  const double *kappa;
+  size_t nkappa;
+  int npoints;
+} mfs_sampling;
+
+/* The classification at one stress.  NAN marks an undefined value (no
+ * unstable wave, no zero, no onset); *_theta are indices into
+ * mfs_sampling.theta (-1 where undefined). */
+typedef struct {
+  double sbar;
+  double min_omega2, kappa_at_min;
+  int theta_at_min;
+  int unstable;
+  double unstable_kappa_from, unstable_kappa_to;
+  double max_growth, kappa_at_max_growth;
+  int theta_at_max_growth;
+  int spurious_zeros;        /* zeros counted over the samples at this stress */
+  double zero_kappa;
+  int zero_theta;
+  double onset_tension, onset_compression;
+  unsigned labels;           /* MFS_LABEL_* bits; 0 is stable */
+} mfs_class;
+
+/* Classify at the stresses sbar[0..nsbar) into out[0..nsbar).  MFS_OK, or
+ * the status of mfs_disp_omega2 (MFS_EDOMAIN, MFS_ELAPACK) at a sample,
+ * MFS_EINVAL, MFS_ENOMEM. */
+mfs_status mfs_classify(const mfs_disp_plan *pl, const mfs_sampling *smp, const double *sbar,
+                        size_t nsbar, mfs_class *out);
+
+/* "stable", or the labels joined by '+' ("tensile+rank-deficiency"), into buf. */
+const char *mfs_class_label(unsigned labels, char *buf, size_t len);
+
+#ifdef __cplusplus
+}
+#endif
+
+#endif
