@@ -9,6 +9,8 @@
 # main job does not re-run the benchmark, and the figure says where and when
 # the times were measured).
 # usage: analysis/figures.sh [BUILD_DIR] [DIR]
+# FIGURES_PLOTS=0 writes the CSV only (the notebooks run it so into a
+# temporary directory and compare with the committed notebooks-data/).
 set -euo pipefail
 cd "$(dirname "$0")/.."
 build=${1:-build}
@@ -28,4 +30,6 @@ run analysis/scenes/tsph-viscoplastic-bar.ini --set discretization.interpolation
   -o "$dir/run_tsph_viscoplastic_paper.csv"
 run analysis/scenes/tsph-viscoplastic-bar.ini -o "$dir/run_tsph_viscoplastic_scene.csv"
 echo "wrote the scene runs run_*.csv" >&2
-/usr/bin/python3 analysis/plot_figures.py "$dir"
+if [ "${FIGURES_PLOTS:-1}" != 0 ]; then
+  /usr/bin/python3 analysis/plot_figures.py "$dir"
+fi

@@ -68,6 +68,21 @@ def g(x, digits=3):
 
 # ---------------------------------------------------------------- names
 
+PRETTY = [("kappa dx/pi", "κΔx/π"), ("sqrt(2) pi/dx", "√2 π/Δx"), ("pi/dx", "π/Δx"), ("omega2", "ω²"),
+          ("omega", "ω"), ("kappa", "κ"), ("alpha_s", "α_s"), ("alpha_1", "α₁"), ("alpha_2", "α₂"), ("sbar", "σ̄"),
+          ("theta", "θ"), (" deg", "°"), ("lambda_max", "λ_max"), ("C-tilde", "C̃"), ("dx^2/c^2", "Δx²/c²"),
+          ("dx", "Δx"), ("gamma = 1/s", "γ = 1/s"), (">=", "≥"), ("<=", "≤"), ("alpha", "α")]
+
+
+def pretty(s):
+    """The plain-text names used here as symbols, for figure captions and notebooks."""
+    for a, b in PRETTY:
+        s = s.replace(a, b)
+    s = re.sub(r"(\d) us\b", r"\1 µs", s)
+    return re.sub(r"(\d) x (\d)", r"\1 × \2", s)
+
+
+
 SHAPES = {"mls": "MLS (EFG)", "sph": "SPH", "kb": "Krongauz-Belytschko", "rl": "Randles-Libersky",
           "shepard": "Shepard"}
 QUADS = {"nodal": "nodal integration", "stress": "stress points", "gauss1": "one-point cells",
@@ -261,7 +276,7 @@ def fig11(d):
     parts = []
     for D in dilations(rows):
         parts.append(f"D = {D:g}: cut-off omega2 = " + ", ".join(
-            f"{g(v['cutoff'])} (alpha {a:g})" for (DD, a), v in sorted(n.items()) if DD == D))
+            f"{g(v['cutoff'])} (alpha_s {a:g})" for (DD, a), v in sorted(n.items()) if DD == D))
     neg = min(v["min"] for v in n.values())
     paper = ("For small D the stabilization removes the spurious mode and a larger alpha_s lowers "
              "the frequency less near the cut-off; for D >= 2.5 alpha_s = 0.001 is not significant "
@@ -511,7 +526,7 @@ def tsph_viscoplastic(d):
 
 # ---------------------------------------------------------------- paper 000, work-precision
 
-# Paper 000 Table 3 (2D plane strain, 481 particles along the rod): L2 velocity error at 0.0231 ms
+# Paper 000 Table 3 (2D plane strain, 4100 to 20 000 particles): L2 velocity error at 0.0231 ms
 TABLE3 = OrderedDict([("SPH", 0.04999), ("RLM", 0.01297), ("KBM(si)", 0.00842), ("EFG(ni)", 0.008232),
                       ("EFG(ci)", 0.006834)])
 WORKPREC = ("workprec_pulse.csv", "workprec_tsph.csv")
@@ -558,14 +573,14 @@ def workprec(d):
     ours_rank = sorted(n, key=lambda m: n[m]["error_481"])
     gain = [v["paper"] / v["error_481"] for m, v in n.items() if m != "SPH" and v["paper"]]
     paper_rank = sorted(TABLE3, key=TABLE3.get)
-    paper = ("(Table 3, 2D plane strain, 481 particles along the rod, t = 0.0231 ms) EFG(ci) best (0.0068), "
-             "then EFG(ni), KBM(si), RLM; SPH worst, about 5% (0.050).")
+    paper = ("(Table 3, 2D plane strain rod 60 x 5 mm, 4100 to 20 000 particles, t = 0.0231 ms) EFG(ci) best "
+             "(0.0068), then EFG(ni), KBM(si), RLM; SPH worst, about 5% (0.050).")
     ours = ("1D, 481 particles, t = 2L/c: " + ", ".join(f"{m} {g(v['error_481'])}" for m, v in n.items()) +
             f". SPH is worst ({g(n['SPH']['error_481'])}, as the paper's 0.050); the corrected methods are "
             f"{g(min(gain), 2)} to {g(max(gain), 2)} times more accurate than in the paper and ordered "
             + " < ".join(ours_rank) +
             " (paper: " + " < ".join(paper_rank) + ").")
-    return _result(paper, ours, n, list(WORKPREC), ours_rank=ours_rank, paper_rank=paper_rank)
+    return _result(paper, ours, n, [WORKPREC[0]], ours_rank=ours_rank, paper_rank=paper_rank)
 
 
 def workprec_sv(d):

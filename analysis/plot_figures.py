@@ -13,7 +13,6 @@ figure names them); legends outside the axes; a caption with the paper's claim a
 finds, computed from the same CSV by analysis/findings.py (the notebooks quote the same module)."""
 import configparser
 import os
-import re
 import sys
 import textwrap
 
@@ -44,20 +43,6 @@ AXIS_KAPPA = r"wave number $\kappa\Delta x/\pi$ (normalized)"
 AXIS_OMEGA2 = r"$(\omega\Delta x/c)^2$ (normalized, $c^2 = C/\rho$)"
 AXIS_OMEGA2_2D = r"$(\omega\Delta x/c)^2$ (normalized, $c^2 = G/\rho$)"
 
-PRETTY = [("kappa dx/pi", "κΔx/π"), ("sqrt(2) pi/dx", "√2 π/Δx"), ("pi/dx", "π/Δx"), ("omega2", "ω²"),
-          ("omega", "ω"), ("kappa", "κ"), ("alpha_s", "α_s"), ("(alpha ", "(α_s "), ("alpha_1", "α₁"), ("alpha_2", "α₂"), ("sbar", "σ̄"),
-          ("theta", "θ"), (" deg", "°"), ("lambda_max", "λ_max"), ("C-tilde", "C̃"), ("dx^2/c^2", "Δx²/c²"),
-          ("dx", "Δx"), ("gamma = 1/s", "γ = 1/s"), (">=", "≥"), ("<=", "≤"), ("alpha", "α")]
-
-
-def pretty(s):
-    """Plain-text names of findings.py as symbols, for figure captions."""
-    for a, b in PRETTY:
-        s = s.replace(a, b)
-    s = re.sub(r"(\d) us\b", r"\1 µs", s)
-    return re.sub(r"(\d) x (\d)", r"\1 × \2", s)
-
-
 def style(i, n, npts, every=None, filled=False):
     """Line style number I of N curves with NPTS points: markers every EVERY points, staggered by
     curve so that coinciding curves show all their markers."""
@@ -82,8 +67,8 @@ class Figure:
         width = int(self.w * 15)
         cap = []
         for head, text in [("Paper: ", paper), ("mfstab: ", ours)] + [("Note: ", n) for n in notes]:
-            cap += textwrap.wrap(pretty(text), width, initial_indent=head, subsequent_indent="    ")
-        title = textwrap.wrap(pretty(self.title), int(self.w * 11))
+            cap += textwrap.wrap(F.pretty(text), width, initial_indent=head, subsequent_indent="    ")
+        title = textwrap.wrap(F.pretty(self.title), int(self.w * 11))
         top = 0.15 + 0.24 * len(title)
         bottom = 0.1 + 0.16 * len(cap)
         h = self.panel_h + top + bottom
