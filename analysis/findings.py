@@ -547,10 +547,19 @@ def provenance(d):
     if not have(d, WORKPREC_MACHINE):
         return "where and when the times were measured is not recorded"
     r = read(d, WORKPREC_MACHINE)[0]
-    return (f"times measured by analysis/bench/workprec.sh at {r['measured_utc']}, {r['cpu']}, {r['cpus']} CPUs "
-            f"(load average {r.get('load_1min', 'not recorded')} before the runs), commit {r['commit']}, "
-            f"{r['build_type']} build, least of {r['repeats']} runs; the main job re-plots them, it does not "
-            "re-measure")
+    known = lambda k: r.get(k, "not recorded") not in ("", "not recorded")  # noqa: E731
+    parts = [f"at {r['measured_utc']}" if known("measured_utc") else None,
+             r["cpu"] if known("cpu") else None,
+             f"{r['cpus']} CPUs" if known("cpus") else None,
+             f"load average {r['load_1min']} before the runs" if known("load_1min") else None,
+             f"commit {r['commit']}" if known("commit") else None,
+             f"{r['build_type']} build" if known("build_type") else None,
+             (f"least of {r['repeats']} runs" if r.get("repeats", "1") != "1" else "one run each")]
+    missing = [n for k, n in (("cpu", "CPU"), ("cpus", "CPU count"), ("load_1min", "load"),
+                              ("build_type", "build type")) if not known(k)]
+    return ("times measured by analysis/bench/workprec.sh " + ", ".join(p for p in parts if p) +
+            (f" ({', '.join(missing)} not recorded)" if missing else "") +
+            "; the main job re-plots them, it does not re-measure")
 
 
 def slope(xs, ys):

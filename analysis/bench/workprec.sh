@@ -9,7 +9,7 @@
 #   notebooks-data/workprec_machine.csv  where and when: measured_utc, cpu, cpus,
 #     load_1min (the load average before the runs), commit, build_type, repeats (analysis/plot_figures.py prints it on the figure)
 # columns: problem,method,nodes,steps_per_transit,seconds,error
-# seconds: the least of REPEATS (3) runs, process start-up included.
+# seconds: the least of REPEATS (default 3) runs, process start-up included.
 # usage: analysis/bench/workprec.sh [BUILD_DIR]   (from the repository root)
 set -euo pipefail
 cd "$(dirname "$0")/../.."
@@ -21,7 +21,7 @@ load=$(cut -d" " -f1 /proc/loadavg 2>/dev/null || echo unknown)
 tmp=$(mktemp -d)
 trap 'rm -rf "$tmp"' EXIT
 err_at() { awk -F, -v T="$T2" 'NR > 1 { d = $1 - T; d = d < 0 ? -d : d; if (NR == 2 || d < b) { b = d; e = $2 } } END { printf "%.6g", e }' "$1"; }
-REPEATS=3
+REPEATS=${REPEATS:-3}
 secs() { # least wall time of REPEATS runs of "$@"
   local t0 t1 b= s i
   for ((i = 0; i < REPEATS; i++)); do
