@@ -6,7 +6,10 @@
 #     error = relative L2 velocity error (eq. 75) at t = 2L/c
 #   notebooks-data/workprec_tsph.csv   the same pulse in the stress-velocity form
 #     (paper 001): the TSPH two-step scheme against RK2 and RK4 at CFL 0.5
+#   notebooks-data/workprec_machine.csv  where and when: measured_utc, cpu, cpus,
+#     load_1min (the load average before the runs), commit, build_type, repeats (analysis/plot_figures.py prints it on the figure)
 # columns: problem,method,nodes,steps_per_transit,seconds,error
+# seconds: the least of REPEATS (default 3) runs, process start-up included.
 # usage: analysis/bench/workprec.sh [BUILD_DIR]   (from the repository root)
 set -euo pipefail
 cd "$(dirname "$0")/../.."
@@ -14,10 +17,20 @@ B=${1:-build}
 M=$B/tools/mfstab
 S=analysis/scenes/gaussian-pulse.ini
 T2=2.3126e-5   # 2 L / c
+load=$(cut -d" " -f1 /proc/loadavg 2>/dev/null || echo unknown)
 tmp=$(mktemp -d)
 trap 'rm -rf "$tmp"' EXIT
 err_at() { awk -F, -v T="$T2" 'NR > 1 { d = $1 - T; d = d < 0 ? -d : d; if (NR == 2 || d < b) { b = d; e = $2 } } END { printf "%.6g", e }' "$1"; }
-secs() { local t0 t1; t0=$(date +%s.%N); "$@" >/dev/null; t1=$(date +%s.%N); echo "$t1 - $t0" | bc -l; }
+REPEATS=${REPEATS:-3}
+secs() { # least wall time of REPEATS runs of "$@"
+  local t0 t1 b= s i
+  for ((i = 0; i < REPEATS; i++)); do
+    t0=$(date +%s.%N); "$@" >/dev/null; t1=$(date +%s.%N)
+    s=$(echo "$t1 - $t0" | bc -l)
+    if [ -z "$b" ] || [ "$(echo "$s < $b" | bc -l)" = 1 ]; then b=$s; fi
+  done
+  echo "$b"
+}
 
 out=notebooks-data/workprec_pulse.csv
 echo "problem,method,nodes,steps_per_transit,seconds,error" > "$out.tmp"
@@ -46,4 +59,13 @@ for sc in tsph rk2 rk4; do
   done
 done
 mv "$out.tmp" "$out"
-echo "wrote notebooks-data/workprec_pulse.csv notebooks-data/workprec_tsph.csv" >&2
+
+out=notebooks-data/workprec_machine.csv
+cpu=$(awk -F': *' '/^model name/ { print $2; exit }' /proc/cpuinfo 2>/dev/null | tr -d ',')
+commit=$(git rev-parse --short HEAD 2>/dev/null || echo unknown)
+git diff --quiet HEAD -- lib tools 2>/dev/null || commit="$commit+changes"
+bt=$(meson introspect --buildoptions "$B" 2>/dev/null | tr '{' '\n' | awk -F'"value": "' '/"name": "buildtype"/ { split($2, a, "\""); print a[1] }')
+{ echo "measured_utc,cpu,cpus,load_1min,commit,build_type,repeats"
+  echo "$(date -u +%Y-%m-%dT%H:%MZ),${cpu:-unknown},$(nproc),$load,$commit,${bt:-unknown},$REPEATS"; } > "$out.tmp"
+mv "$out.tmp" "$out"
+echo "wrote notebooks-data/workprec_pulse.csv notebooks-data/workprec_tsph.csv notebooks-data/workprec_machine.csv" >&2
