@@ -31,15 +31,23 @@ _Noreturn void cli_die(int code, const char *fmt, ...)
 
 /* ---- numbers ---- */
 
+/* An optional sign and at least one digit at *c (advanced past them);
+ * the count of digits.  The grammar of strict numbers. */
+static int sign_digits(const char **c)
+{
+  int n = 0;
+  if (**c == '+' || **c == '-')
+    (*c)++;
+  while (**c >= '0' && **c <= '9')
+    (*c)++, n++;
+  return n;
+}
+
 int cli_parse_double(const char *s, double *v)
 {
   /* decimal only: [+-]digits[.digits][(e|E)[+-]digits] */
   const char *c = s;
-  if (*c == '+' || *c == '-')
-    c++;
-  int digits = 0;
-  while (*c >= '0' && *c <= '9')
-    c++, digits++;
+  int digits = sign_digits(&c);
   if (*c == '.') {
     c++;
     while (*c >= '0' && *c <= '9')
@@ -47,18 +55,10 @@ int cli_parse_double(const char *s, double *v)
   }
   if (!digits)
     return 0;
-  if (*c == 'e' || *c == 'E') {
-    c++;
-    if (*c == '+' || *c == '-')
-      c++;
-    if (!(*c >= '0' && *c <= '9'))
-      return 0;
-    while (*c >= '0' && *c <= '9')
-      c++;
-  }
+  if ((*c == 'e' || *c == 'E') && (c++, sign_digits(&c) == 0))
+    return 0;
   if (*c != '\0')
     return 0;
-  errno = 0;
   char *end;
   double x = strtod(s, &end);
   if (*end != '\0' || !isfinite(x)) /* overflow; an underflow to a subnormal is fine */
@@ -70,13 +70,7 @@ int cli_parse_double(const char *s, double *v)
 int cli_parse_long(const char *s, long *v)
 {
   const char *c = s;
-  if (*c == '+' || *c == '-')
-    c++;
-  if (!(*c >= '0' && *c <= '9'))
-    return 0;
-  while (*c >= '0' && *c <= '9')
-    c++;
-  if (*c != '\0')
+  if (sign_digits(&c) == 0 || *c != '\0')
     return 0;
   errno = 0;
   long x = strtol(s, NULL, 10);
@@ -222,8 +216,10 @@ static void set_value(const cli_opt *o, void *base, const char *val)
     }
   case CLI_TABLE: {
     const void *t = o->find(val);
+    char names[512];
     if (!t)
-      cli_die(2, "%s '%s': unknown; allowed: %s", o->name, val, o->allowed);
+      cli_die(2, "%s '%s': unknown; allowed: %s", o->name, val,
+              cli_table_names(o->list, names, sizeof names));
     *(const void **)at = t;
     break;
   }
@@ -264,15 +260,26 @@ static void print_opt(FILE *f, const cli_opt *o)
     snprintf(left, sizeof left, "  %s", o->name);
   else
     snprintf(left, sizeof left, "  %s %s", o->name, o->arg ? o->arg : "VALUE");
+  char hbuf[1024];
   const char *h = o->help ? o->help : "";
+  if (o->type == CLI_TABLE) { /* the names come from the tables */
+    char names[512];
+    snprintf(hbuf, sizeof hbuf, "%s: %s", h, cli_table_names(o->list, names, sizeof names));
+    h = hbuf;
+  }
   if (strlen(left) >= 26)
     fprintf(f, "%s\n%26s", left, "");
   else
     fprintf(f, "%-26s", left);
-  for (const char *c = h; *c; c++) {
+  int col = 26;
+  for (const char *c = h; *c; c++) { /* wrap at a space past column 92 */
+    if (*c == '\n' || (*c == ' ' && col > 92)) {
+      fprintf(f, "\n%26s", "");
+      col = 26;
+      continue;
+    }
     fputc(*c, f);
-    if (*c == '\n' && c[1])
-      fprintf(f, "%26s", "");
+    col++;
   }
   fputc('\n', f);
 }
@@ -352,6 +359,55 @@ int cli_seen(const cli_group *g, const char *name)
   return 0;
 }
 
+static int gauss_index(const char *name)
+{
+  int n, len = 0;
+  if (sscanf(name, "gauss%d%n", &n, &len) == 1 && name[len] == '\0')
+    return n;
+  return 0;
+}
+
+/* Append the names of the tables t[0..n) to buf, folding runs of gaussN. */
+static const char *join_names(const char *const *names, size_t n, char *buf, size_t len)
+{
+  buf[0] = '\0';
+  for (size_t i = 0; i < n; i++) {
+    size_t j = i;
+    while (j + 1 < n && gauss_index(names[j]) && gauss_index(names[j + 1]) == gauss_index(names[j]) + 1)
+      j++;
+    char item[96];
+    if (j > i + 1)
+      snprintf(item, sizeof item, "%s .. %s", names[i], names[j]);
+    else
+      snprintf(item, sizeof item, "%s", names[i]);
+    if (buf[0])
+      strncat(buf, ", ", len - strlen(buf) - 1);
+    strncat(buf, item, len - strlen(buf) - 1);
+    if (j > i + 1)
+      i = j;
+  }
+  return buf;
+}
+
+const char *cli_table_names(const void *const *list, char *buf, size_t len)
+{
+  const char *names[64];
+  size_t n = 0;
+  for (; list && list[n] && n < 64; n++)
+    names[n] = *(const char *const *)list[n];
+  return join_names(names, n, buf, len);
+}
+
+const char *cli_quad_names(int dim, mfs_lattice_kind lat, char *buf, size_t len)
+{
+  const char *names[64];
+  size_t n = 0;
+  for (size_t i = 0; mfs_quad_types[i] && n < 64; i++)
+    if (mfs_quad_applies(mfs_quad_types[i], dim, lat))
+      names[n++] = mfs_quad_types[i]->name;
+  return join_names(names, n, buf, len);
+}
+
 /* ---- discretization options ---- */
 
 static const char *const lattice_names[] = {"line", "square", "hex", NULL};
@@ -379,19 +435,18 @@ const cli_opt cli_disc_opts[] = {
    .help = "particle lattice (default line in 1D, square in 2D)", .offset = DOFF(lattice),
    .choices = lattice_names},
   {.name = "--kernel", .type = CLI_TABLE, .arg = "NAME",
-   .help = "cubic (default), quartic, wendland2, quintic", .offset = DOFF(kernel),
-   .find = find_kernel, .allowed = "cubic, quartic, wendland2, quintic"},
+   .help = "the kernel (default cubic)", .offset = DOFF(kernel), .find = find_kernel,
+   .list = (const void *const *)mfs_kernel_types},
   {.name = "--dilation", .type = CLI_REALS, .arg = "D",
    .help = "support radius a = D*dx (default 2)", .offset = DOFF(dilation),
    .bounds = CLI_GT | CLI_LE, .lo = 0, .hi = 1e4},
   {.name = "--shape", .type = CLI_TABLE, .arg = "NAME",
-   .help = "mls (default), sph, shepard, kb, rl", .offset = DOFF(shape), .find = find_shape,
-   .allowed = "sph, shepard, mls, kb, rl"},
+   .help = "shape functions (default mls)", .offset = DOFF(shape), .find = find_shape,
+   .list = (const void *const *)mfs_shape_types},
   {.name = "--quadrature", .type = CLI_TABLE, .arg = "RULE",
-   .help = "nodal (default), stress (1D), stress-quad, stress-tri,\n"
-           "stress-star, stress-hex, gauss1, gauss2, .. gauss10",
-   .offset = DOFF(quadrature), .find = find_quad,
-   .allowed = "nodal, stress, stress-quad, stress-tri, stress-star, stress-hex, gauss1 .. gauss10"},
+   .help = "the quadrature rule (default nodal; docs/commands.md says which lattice "
+           "each needs)",
+   .offset = DOFF(quadrature), .find = find_quad, .list = (const void *const *)mfs_quad_types},
   {.name = "--mass", .type = CLI_CHOICE, .arg = "lumped|consistent",
    .help = "mass matrix (default lumped, row sum)", .offset = DOFF(mass), .choices = mass_names},
   {.name = "--modulus", .type = CLI_REAL, .arg = "C",
@@ -446,12 +501,10 @@ mfs_disc cli_disc_build(const cli_disc *o, const unsigned char *seen)
   if (dim == 2 && lat == MFS_LATTICE_LINE)
     cli_die(2, "--lattice line: not a 2D lattice; with --dim 2 allowed: square, hex");
   if (!mfs_quad_applies(o->quadrature, dim, (mfs_lattice_kind)lat)) {
-    const char *allowed = dim == 1 ? "nodal, stress, gaussN"
-                          : lat == MFS_LATTICE_HEX
-                            ? "nodal, stress-hex, gaussN"
-                            : "nodal, stress-quad, stress-tri, stress-star, gaussN";
+    char names[512];
     cli_die(2, "--quadrature %s: not defined for --dim %d --lattice %s; allowed: %s",
-            o->quadrature->name, dim, lattice_names[lat], allowed);
+            o->quadrature->name, dim, lattice_names[lat],
+            cli_quad_names(dim, (mfs_lattice_kind)lat, names, sizeof names));
   }
   if (o->physics == 1 && dim != 2)
     cli_die(2, "--physics plane-strain needs --dim 2");
@@ -641,6 +694,23 @@ void cli_out_open(cli_out *o, const char *path)
   if (!o->f)
     cli_die(1, "-o %s: %s", path, strerror(errno));
   current_out = o;
+}
+
+const char *cli_out_open_fmt(cli_out *o, const char *fmt, ...)
+{
+  va_list ap;
+  va_start(ap, fmt);
+  int n = vsnprintf(NULL, 0, fmt, ap);
+  va_end(ap);
+  char *path = n >= 0 ? malloc((size_t)n + 1) : NULL;
+  if (!path)
+    cli_die(1, "out of memory");
+  va_start(ap, fmt);
+  vsnprintf(path, (size_t)n + 1, fmt, ap);
+  va_end(ap);
+  cli_out_open(o, path);
+  free(path);
+  return o->path;
 }
 
 void cli_out_abort(cli_out *o)

@@ -63,7 +63,9 @@ typedef struct {
   double lo, hi;
   const char *const *choices;            /* CLI_CHOICE: NULL-terminated */
   const void *(*find)(const char *name); /* CLI_TABLE: the table, or NULL */
-  const char *allowed;                   /* CLI_TABLE: the names, for messages */
+  const void *const *list;               /* CLI_TABLE: every table (NULL-terminated; each
+                                            starts with its const char *name): the names
+                                            listed in --help and in messages */
 } cli_opt;
 
 /* A table of options (ended by an entry of type CLI_END) filling the struct
@@ -83,6 +85,14 @@ void cli_parse(int argc, char **argv, const char *usage, const char *about, cli_
 /* The help text of a command (for `mfstab help CMD`). */
 void cli_print_help(FILE *f, const char *usage, const char *about, const cli_group *groups,
                     size_t ngroups);
+
+/* The names of a NULL-terminated list of variant tables (each starting
+ * with its const char *name), comma-separated, runs gauss1, gauss2, ...
+ * folded to "gauss1 .. gaussN"; into buf. */
+const char *cli_table_names(const void *const *list, char *buf, size_t len);
+
+/* The quadrature rules defined in dimension dim on lattice lat, as above. */
+const char *cli_quad_names(int dim, mfs_lattice_kind lat, char *buf, size_t len);
 
 /* The entry of group g for option name (must exist), and whether it was given. */
 int cli_seen(const cli_group *g, const char *name);
@@ -132,6 +142,8 @@ typedef struct {
   char *path, *tmp;
 } cli_out;
 void cli_out_open(cli_out *o, const char *path);
+/* The same for the path printf(fmt, ...) makes; returns the path (valid until commit or abort). */
+const char *cli_out_open_fmt(cli_out *o, const char *fmt, ...);
 void cli_out_commit(cli_out *o);  /* close and rename; exits 1 on I/O failure */
 void cli_out_abort(cli_out *o);   /* close and remove the temporary file */
 

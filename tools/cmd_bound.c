@@ -68,11 +68,7 @@ int cmd_bound(int argc, char **argv)
   fprintf(f, "%d,%zu,", bvalid, br.negative_phi);
   eigs_put(f, br.xmax[0], 0);
   eigs_put(f, br.xmax[1], 0);
-  eigs_put(f, dv.bound_alpha, 0);
-  eigs_put(f, dv.alpha, 0);
-  eigs_put(f, lf, 0);
-  eigs_put(f, kf, 0);
-  eigs_put(f, tf * 180.0 / M_PI, 0);
+  eigs_put_estimates(f, &dv, lf, kf, tf);
   eigs_put(f, mfs_dt_crit(br.lambda), 0);
   eigs_put(f, mfs_dt_crit(dv.bound_alpha), 0);
   eigs_put(f, mfs_dt_crit(lf), 0);

@@ -214,6 +214,15 @@ void eigs_put(FILE *f, double v, int last)
   fputc(last ? '\n' : ',', f);
 }
 
+void eigs_put_estimates(FILE *f, const eigs_derived *dv, double lf, double kf, double tf)
+{
+  eigs_put(f, dv->bound_alpha, 0);
+  eigs_put(f, dv->alpha, 0);
+  eigs_put(f, lf, 0);
+  eigs_put(f, kf, 0);
+  eigs_put(f, tf * 180.0 / M_PI, 0);
+}
+
 void eigs_config_header(FILE *f)
 {
   fputs("dim,nodes_x,nodes_y,length_x,length_y,dx,dy,kernel,shape,quadrature,mass,dilation,"
@@ -264,19 +273,13 @@ static _Noreturn void die_eig(int st, const mfs_eig_info *info, const char *what
 /* Write one Matrix Market file through the atomic output. */
 static void export_one(const mfs_model *m, const char *prefix, const char *which)
 {
-  size_t len = strlen(prefix) + 8;
-  char *path = malloc(len);
-  if (!path)
-    cli_die(1, "out of memory");
-  snprintf(path, len, "%s_%s.mtx", prefix, which);
   cli_out o;
-  cli_out_open(&o, path);
+  const char *path = cli_out_open_fmt(&o, "%s_%s.mtx", prefix, which);
   mfs_status st =
     which[0] == 'K' ? mfs_model_write_mtx(m, o.f, NULL) : mfs_model_write_mtx(m, NULL, o.f);
   if (st != MFS_OK)
     cli_die(1, "--export-mtx %s: cannot write: %s", path, mfs_strerror(st));
   cli_out_commit(&o);
-  free(path);
 }
 
 typedef struct {
@@ -398,11 +401,7 @@ int cmd_eigs(int argc, char **argv)
   eigs_put(f, sqrt(lam), 0);
   eigs_put(f, br.lambda, 0);
   fprintf(f, "%d,%zu,", bvalid, br.negative_phi);
-  eigs_put(f, dv.bound_alpha, 0);
-  eigs_put(f, dv.alpha, 0);
-  eigs_put(f, lf, 0);
-  eigs_put(f, kf, 0);
-  eigs_put(f, tf * 180.0 / M_PI, 0);
+  eigs_put_estimates(f, &dv, lf, kf, tf);
   eigs_put(f, mfs_dt_crit(lam), 0);
   eigs_put(f, mfs_dt_crit(br.lambda), 0);
   eigs_put(f, mfs_dt_crit(dv.bound_alpha), 0);
@@ -465,13 +464,8 @@ static int fig_row(FILE *f, const char *fig, const mfs_model_spec *ms, int nodes
 
 static int fig_file(const char *dir, const char *name, const mfs_kernel_type *k, int dim)
 {
-  size_t len = strlen(dir) + strlen(name) + 2;
-  char *path = malloc(len);
-  if (!path)
-    cli_die(1, "out of memory");
-  snprintf(path, len, "%s/%s", dir, name);
   cli_out out;
-  cli_out_open(&out, path);
+  const char *path = cli_out_open_fmt(&out, "%s/%s", dir, name);
   FILE *f = out.f;
   fputs("figure,kernel,shape,quadrature,mass,nodes,dilation,lambda_max_dx2,bound_dx2,"
         "alpha_dx2,paper_alpha_dx2,paper_alpha2_dx2,bound_ratio,alpha_ratio,negative_phi_points\n",
@@ -500,10 +494,10 @@ static int fig_file(const char *dir, const char *name, const mfs_kernel_type *k,
   if (bad) {
     cli_out_abort(&out);
     fprintf(stderr, "mfstab %s: cannot compute %s\n", cli_command, path);
+    cli_out_abort(&out);
   } else {
     cli_out_commit(&out);
   }
-  free(path);
   return bad;
 }
 

@@ -58,6 +58,10 @@ void eigs_derive(const mfs_model_spec *s, eigs_derived *dv);
 void eigs_config_header(FILE *f);
 void eigs_config_row(FILE *f, const mfs_model_spec *s, const eigs_derived *dv);
 
+/* The columns bound_alpha, alpha, lambda_fourier, kappa_fourier, theta_fourier
+ * (degrees), each followed by a comma. */
+void eigs_put_estimates(FILE *f, const eigs_derived *dv, double lf, double kf, double tf);
+
 /* One number into a CSV row; dies (exit 1) rather than write a NaN. */
 void eigs_put(FILE *f, double v, int last);
 

@@ -166,9 +166,11 @@ static int quad_applies(const mfs_quad_type *t, int dim)
 
 static const char *quad_allowed(int dim)
 {
-  return dim == 2 ? "allowed with [model] dim = 2: nodal, stress-quad, stress-tri, stress-star, "
-                    "gauss1 .. gauss10"
-                  : "allowed: nodal, stress, gauss1 .. gauss10";
+  static char buf[512];
+  char names[400];
+  cli_quad_names(dim, dim == 1 ? MFS_LATTICE_LINE : MFS_LATTICE_SQUARE, names, sizeof names);
+  snprintf(buf, sizeof buf, "allowed%s: %s", dim == 2 ? " with [model] dim = 2" : "", names);
+  return buf;
 }
 
 static void set_key(scene *sc, int line, key_id id, const char *value)
@@ -277,9 +279,11 @@ static void set_key(scene *sc, int line, key_id id, const char *value)
   case MODULUS: sp->disc.material.modulus = x; break;
   case INITIAL_STRESS: sp->disc.material.initial_stress = x; break;
   case KERNEL:
-    if (!(sp->disc.kernel = mfs_kernel_find(value)))
-      key_error(sc, line, k->section, k->name, value,
-                "unknown kernel; allowed: cubic, quartic, wendland2, quintic");
+    if (!(sp->disc.kernel = mfs_kernel_find(value))) {
+      char names[256];
+      key_error(sc, line, k->section, k->name, value, "unknown kernel; allowed: %s",
+                cli_table_names((const void *const *)mfs_kernel_types, names, sizeof names));
+    }
     break;
   case DILATION: sp->disc.dilation = x; break;
   case VISCOSITY: sc->viscosity = x; break;
@@ -292,9 +296,11 @@ static void set_key(scene *sc, int line, key_id id, const char *value)
       key_error(sc, line, k->section, k->name, value, "allowed: shepard, linear");
     break;
   case SHAPE:
-    if (!(sp->disc.shape = mfs_shape_find(value)))
-      key_error(sc, line, k->section, k->name, value,
-                "unknown shape function; allowed: mls, sph, shepard, kb, rl");
+    if (!(sp->disc.shape = mfs_shape_find(value))) {
+      char names[256];
+      key_error(sc, line, k->section, k->name, value, "unknown shape function; allowed: %s",
+                cli_table_names((const void *const *)mfs_shape_types, names, sizeof names));
+    }
     break;
   case FRAME:
     if (!strcmp(value, "eulerian"))

@@ -56,6 +56,19 @@ static double sym_max_eig(int n, double *A)
   return m;
 }
 
+/* 1 / (phi_J S), the weight of neighbour J in lambda^Q; 0 for a fixed
+ * neighbour or a phi_J <= 0 (then *negative = 1: no guarantee). */
+static double lumped_weight(double phi, double S, int active, int *negative)
+{
+  if (!active)
+    return 0.0;
+  if (!(phi > 0.0)) {
+    *negative = 1;
+    return 0.0;
+  }
+  return 1.0 / (phi * S);
+}
+
 double mfs_bound_point(int dim, const mfs_material *mat, int nn, const double *tab, int ncomp,
                        const unsigned char *active, int *negative)
 {
@@ -71,14 +84,11 @@ double mfs_bound_point(int dim, const mfs_material *mat, int nn, const double *t
     /* X = sum_I B_I B_I^T / (phi_I S), strain order (xx, yy, xy) */
     double X[9] = {0};
     for (int J = 0; J < nn; J++) {
-      if (active && !active[J])
-        continue;
       const double *f = tab + (size_t)J * ncomp;
-      if (!(f[0] > 0.0)) {
-        *negative = 1;
+      double s = lumped_weight(f[0], S, active ? active[J] : 1, negative);
+      if (s == 0.0)
         continue;
-      }
-      double s = 1.0 / (f[0] * S), gx = f[1], gy = f[2];
+      double gx = f[1], gy = f[2];
       X[0] += s * gx * gx;
       X[2] += s * gx * gy;
       X[4] += s * gy * gy;
@@ -114,14 +124,10 @@ double mfs_bound_point(int dim, const mfs_material *mat, int nn, const double *t
   }
   double G[9] = {0}; /* dim x dim; sized for sym_max_eig */
   for (int J = 0; J < nn; J++) {
-    if (active && !active[J])
-      continue;
     const double *f = tab + (size_t)J * ncomp;
-    if (!(f[0] > 0.0)) {
-      *negative = 1;
+    double s = lumped_weight(f[0], S, active ? active[J] : 1, negative);
+    if (s == 0.0)
       continue;
-    }
-    double s = 1.0 / (f[0] * S);
     for (int k = 0; k < dim; k++)
       for (int l = 0; l < dim; l++)
         G[k * dim + l] += s * f[1 + k] * f[1 + l];

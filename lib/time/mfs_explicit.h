@@ -8,6 +8,7 @@
 #ifndef MFS_EXPLICIT_H
 #define MFS_EXPLICIT_H
 
+#include <math.h>
 #include <stddef.h>
 
 #include "mfs_status.h"
@@ -42,6 +43,15 @@ static inline double mfs_lerp_uniform(const double *v, size_t n, double dx, doub
   size_t i = (size_t)q;
   double f = q - (double)i;
   return (1.0 - f) * v[i] + f * v[i + 1];
+}
+
+/* A step dt against the stable step dt_crit: MFS_EINVAL if dt <= 0, not
+ * finite, or above dt_crit without force; else MFS_OK. */
+static inline mfs_status mfs_explicit_check_dt(double dt, double dt_crit, int force)
+{
+  if (!(dt > 0.0) || !isfinite(dt) || (dt > dt_crit && !force))
+    return MFS_EINVAL;
+  return MFS_OK;
 }
 
 /* a = a(u); MFS_OK or the caller's error status. */

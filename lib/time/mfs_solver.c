@@ -114,24 +114,6 @@ static int search(mfs_solver *s)
   return MFS_OK;
 }
 
-/* b - a for two 1D coordinates, the minimum image when the box is periodic.
- * Same value as mfs_box_delta for |b - a| < 1.5 L (all points here: x = X + u
- * with X in the box), without its division and nearbyint. */
-static inline double delta1(const mfs_box *box, double a, double b)
-{
-  double t = b - a;
-  if (box->periodic) {
-    double L = box->hi[0] - box->lo[0];
-    if (fabs(t) >= 1.5 * L)
-      t -= L * nearbyint(t / L);
-    else if (t > 0.5 * L)
-      t -= L;
-    else if (t < -0.5 * L)
-      t += L;
-  }
-  return t;
-}
-
 static inline double max2(double a, double b)
 {
   return a > b ? a : b;
@@ -150,7 +132,7 @@ static int eulerian_positions(mfs_solver *s, const double *u)
   int finite = 1;
   for (size_t I = 0; I < s->n; I++) {
     x[I] = s->X[I] + u[I];
-    double dI = fabs(delta1(box, xb[I], x[I]));
+    double dI = fabs(mfs_box_delta1(box, xb[I], x[I]));
     finite &= isfinite(dI);
     moved = max2(moved, dI);
   }
@@ -163,7 +145,7 @@ static int eulerian_positions(mfs_solver *s, const double *u)
         uq += w->tab[2 * e] * u[w->tidx[e]]; /* nc = 2 */
       xq[Q] = s->xq0[Q] + uq;
     }
-    double dq = fabs(delta1(box, xqb[Q], xq[Q]));
+    double dq = fabs(mfs_box_delta1(box, xqb[Q], xq[Q]));
     finite &= isfinite(dq);
     moved = max2(moved, dq);
   }
@@ -447,10 +429,10 @@ mfs_status mfs_solver_reset(mfs_solver *s)
 
 mfs_status mfs_solver_set_dt(mfs_solver *s, double dt, int force_it)
 {
-  if (!(dt > 0.0) || !isfinite(dt) || (dt > s->dt_crit && !force_it))
-    return MFS_EINVAL;
-  s->dt = dt;
-  return MFS_OK;
+  mfs_status st = mfs_explicit_check_dt(dt, s->dt_crit, force_it);
+  if (st == MFS_OK)
+    s->dt = dt;
+  return st;
 }
 
 /* mfs_explicit's callbacks (central difference: eq. 120, kick-drift-kick). */

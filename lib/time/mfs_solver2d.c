@@ -163,10 +163,10 @@ mfs_status mfs_solver2d_set_state(mfs_solver2d *s, const double *u, const double
 
 mfs_status mfs_solver2d_set_dt(mfs_solver2d *s, double dt, int force)
 {
-  if (!(dt > 0.0) || !isfinite(dt) || (dt > s->dt_crit && !force))
-    return MFS_EINVAL;
-  s->dt = dt;
-  return MFS_OK;
+  mfs_status st = mfs_explicit_check_dt(dt, s->dt_crit, force);
+  if (st == MFS_OK)
+    s->dt = dt;
+  return st;
 }
 
 /* Central difference, eq. 120, in kick-drift-kick form. */
