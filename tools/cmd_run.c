@@ -1,7 +1,7 @@
 /* mfstab run: explicit time integration of a scene (tools/scene.h) with one
- * of the reference solvers (the rod, lib/mfs_solver.h; the TSPH bar,
- * lib/mfs_tsph.h; the linear plate, lib/mfs_solver2d.h) through their one
- * interface (lib/mfs_integrator.h): one time loop, one probe table, one CSV
+ * of the reference solvers (the rod, lib/time/mfs_solver.h; the TSPH bar,
+ * lib/time/mfs_tsph.h; the linear plate, lib/time/mfs_solver2d.h) through their one
+ * interface (lib/time/mfs_integrator.h): one time loop, one probe table, one CSV
  * writer. */
 #include <complex.h>
 #undef I
@@ -17,12 +17,12 @@
 
 static const char usage[] = "mfstab run SCENE.ini [--set SECTION.KEY=VALUE ...] [-o FILE]";
 static const char about[] =
-  "Explicit time integration of a 1D rod of particles (lib/mfs_solver.h) or a 2D plate\n"
-  "(dim = 2, lib/mfs_solver2d.h) described by an INI scene file; writes CSV columns t followed\n"
+  "Explicit time integration of a 1D rod of particles (lib/time/mfs_solver.h) or a 2D plate\n"
+  "(dim = 2, lib/time/mfs_solver2d.h) described by an INI scene file; writes CSV columns t followed\n"
   "by the probes of [output] probes.\n"
   "Sections and keys (defaults in parentheses; * required):\n"
   "  [model]          nodes*, length* (m), periodic (0), dim (1 | 2), formulation (displacement |\n"
-  "                   stress_velocity: the TSPH bar of lib/mfs_tsph.h, schemes tsph (default),\n"
+  "                   stress_velocity: the TSPH bar of lib/time/mfs_tsph.h, schemes tsph (default),\n"
   "                   euler, rk2, rk4; [material] yield_stress, fluidity, perzyna_exponent,\n"
   "                   hardening; [discretization] interpolation (shepard | linear),\n"
   "                   artificial_viscosity (0: alpha of q = alpha rho c dx v_x); stable\n"
@@ -248,7 +248,7 @@ static void choose_dt(const scene *sc, mfs_integrator *in)
   const char *rule = in->type->step_rule;
   char why[96];
   if (in->type == &mfs_integrator_tsph)
-    snprintf(why, sizeof why, "of %s (lib/mfs_tsph.h)", mfs_tsph_scheme_name(sc->tscheme));
+    snprintf(why, sizeof why, "of %s (lib/time/mfs_tsph.h)", mfs_tsph_scheme_name(sc->tscheme));
   else
     snprintf(why, sizeof why, "(2/sqrt(lambda_max), eqs 120, 132)");
   if (!(dts > 0.0) && !(sc->have_dt && sc->force)) {

@@ -509,7 +509,7 @@ static const struct {
   key_id id;
   const char *why;
 } not_2d[] = {
-  {INITIAL_STRESS, "2D runs have no initial stress (lib/mfs_solver2d.h: linear, unstressed)"},
+  {INITIAL_STRESS, "2D runs have no initial stress (lib/time/mfs_solver2d.h: linear, unstressed)"},
   {EQUILIBRATE, "2D runs have no initial stress to equilibrate"},
   {SKIN, "the Eulerian neighbour skin; 2D runs are Lagrangian only"},
   {PERTURBATION, "1D only; seed a 2D run with mode_x, mode_y, mode_amplitude or a pulse"},
@@ -546,7 +546,7 @@ static void finish_2d(scene *sc)
                     "the stress-velocity (TSPH) bar is 1D only; 2D runs are displacement form");
   if (sp->disc.frame == MFS_FRAME_EULERIAN)
     scene_key_error(sc, "discretization", "frame",
-                    "2D runs are Lagrangian only (no 2D Eulerian operator in lib/mfs_solver2d.h)");
+                    "2D runs are Lagrangian only (no 2D Eulerian operator in lib/time/mfs_solver2d.h)");
   for (size_t i = 0; i < sizeof not_2d / sizeof not_2d[0]; i++)
     if (values[not_2d[i].id][0])
       scene_key_error(sc, keys[not_2d[i].id].section, keys[not_2d[i].id].name,
@@ -656,7 +656,7 @@ void scene_finish(scene *sc)
                         "viscoplasticity needs [model] formulation = stress_velocity");
     return;
   }
-  /* stress-velocity bar (TSPH, lib/mfs_tsph.h) */
+  /* stress-velocity bar (TSPH, lib/time/mfs_tsph.h) */
   static const int unused[] = {PERIODIC, INITIAL_STRESS, SHAPE, FRAME, QUADRATURE, EQUILIBRATE,
                                SKIN, PERTURBATION, SEED};
   for (int i = 0; i < (int)(sizeof unused / sizeof unused[0]); i++)
