@@ -1,6 +1,6 @@
 /* Scene files of `mfstab run`: an INI file (read with inih) describing a
  * rod ([model] dim = 1) or a rectangle (dim = 2: anti-plane shear or plane
- * strain, the linear Lagrangian models of lib/mfs_solver2d.h), its
+ * strain, the linear Lagrangian models of lib/time/mfs_solver2d.h), its
  * discretization, initial and boundary conditions, the time integration and
  * the probes to record.  Validated once; every error names the file, the
  * line, the section and the key, and exits with code 2. */
@@ -17,7 +17,7 @@
 typedef struct {
   const char *path;        /* the scene file */
   mfs_solver_spec spec;    /* model, material, discretization, boundary */
-  /* [model] formulation = stress_velocity: the TSPH bar (lib/mfs_tsph.h) */
+  /* [model] formulation = stress_velocity: the TSPH bar (lib/time/mfs_tsph.h) */
   int stress_velocity;
   int linear_interpolation; /* [discretization] interpolation = linear */
   double viscosity;        /* [discretization] artificial_viscosity (alpha) */
@@ -27,7 +27,7 @@ typedef struct {
   double perturbation;     /* random displacement in [-p, p] dX */
   unsigned long seed;
   double pulse_amplitude, pulse_alpha, pulse_center; /* v = A exp(-alpha (X - c)^2) */
-  /* [model] dim = 2 (lib/mfs_solver2d.h): nodes x nodes_y particles on
+  /* [model] dim = 2 (lib/time/mfs_solver2d.h): nodes x nodes_y particles on
    * length x length_y; [material] modulus is the shear modulus mu */
   int dim;
   int ny;                  /* [model] nodes_y */
@@ -68,7 +68,7 @@ enum {
   PROBE_MAX_V,
   PROBE_V_MID,
   PROBE_V_ERR,
-  PROBE_MODIFIED, /* 2D: the leapfrog's conserved energy (lib/mfs_solver2d.h) */
+  PROBE_MODIFIED, /* 2D: the leapfrog's conserved energy (lib/time/mfs_solver2d.h) */
   PROBE_COUNT
 };
 extern const char *const scene_probe_names[PROBE_COUNT];
