@@ -46,17 +46,21 @@ mfs_status mfs_row_init(mfs_row *r, const mfs_plan *pl, const mfs_forms *f)
     return MFS_EINVAL;
   const mfs_particles *p = mfs_plan_particles(pl);
   size_t n = p->n;
+  mfs_plan_table(pl, &r->tptr, &r->tidx, &r->ttab);
+  const mfs_quad *q = mfs_plan_quad(pl);
+  r->qw = q->w;
+  r->qx = q->x;
+  r->qnode = q->node;
+  r->nc = mfs_plan_ncomp(pl);
+  r->dim = p->dim;
   /* a row has at most the sum of the list lengths of the points that see I */
   size_t cap = 1;
   for (size_t I = 0; I < n; I++) {
     size_t nq, s = 0;
     const int *Q;
     mfs_plan_particle_points(pl, I, &nq, &Q);
-    for (size_t t = 0; t < nq; t++) {
-      mfs_point pt;
-      mfs_plan_point(pl, (size_t)Q[t], &pt);
-      s += pt.nn;
-    }
+    for (size_t t = 0; t < nq; t++)
+      s += r->tptr[Q[t] + 1] - r->tptr[Q[t]];
     cap = s > cap ? s : cap;
   }
   cap = cap < n ? cap : (n ? n : 1);
@@ -95,10 +99,10 @@ nomem:
  * iI of the point's list); col[k] is the row position of neighbour k.  The
  * arithmetic of each term is fixed (a += (w c) g, ...) so that the values do
  * not depend on how the loops are split. */
-static int add_point(mfs_row *r, const mfs_plan *pl, const mfs_forms *f, size_t I,
-                     const mfs_point *pt, size_t iI, const int *col)
+static inline int add_point(mfs_row *r, const mfs_plan *pl, const mfs_forms *f, size_t I,
+                            const mfs_point *pt, size_t iI, const int *col)
 {
-  const int nc = pt->ncomp, dim = mfs_plan_particles(pl)->dim, nd = r->ndof, nd2 = nd * nd;
+  const int nc = pt->ncomp, dim = r->dim, nd = r->ndof, nd2 = nd * nd;
   const double w = pt->w, *tab = pt->phi, *fi = tab + iI * (size_t)nc;
   const size_t nn = pt->nn;
   if (f->stiffness) {
@@ -211,8 +215,15 @@ mfs_status mfs_row_assemble(mfs_row *r, const mfs_plan *pl, const mfs_forms *f, 
   mfs_plan_particle_points(pl, I, &nq, &Qs);
   int *col = r->pcol, st = MFS_OK;
   for (size_t t = 0; t < nq && st == MFS_OK; t++) {
-    mfs_point pt;
-    mfs_plan_point(pl, (size_t)Qs[t], &pt);
+    size_t Q = (size_t)Qs[t], e0 = r->tptr[Q]; /* mfs_plan_point, from the cached table */
+    mfs_point pt; /* field by field: an initializer would clear the padding (a memset) */
+    pt.nn = r->tptr[Q + 1] - e0;
+    pt.idx = r->tidx + e0;
+    pt.phi = r->ttab + e0 * (size_t)r->nc;
+    pt.ncomp = r->nc;
+    pt.w = r->qw[Q];
+    pt.x = r->qx + Q * (size_t)r->dim;
+    pt.node = r->qnode[Q];
     size_t iI = 0;
     for (size_t e = 0; e < pt.nn; e++) { /* columns met for the first time, and I's entry */
       int J = pt.idx[e];
@@ -221,9 +232,13 @@ mfs_status mfs_row_assemble(mfs_row *r, const mfs_plan *pl, const mfs_forms *f, 
         size_t s = r->len++;
         r->mark[J] = (int)s;
         r->col[s] = J;
-        if (r->K)
-          for (int k = 0; k < nd2; k++)
-            r->K[s * nd2 + k] = 0.0;
+        if (r->K) {
+          if (nd2 == 1)
+            r->K[s] = 0.0;
+          else
+            for (int k = 0; k < nd2; k++)
+              r->K[s * nd2 + k] = 0.0;
+        }
         if (r->M)
           r->M[s] = 0.0;
         if (r->G)

@@ -67,6 +67,11 @@ typedef struct {
   size_t cap;
   int *mark;      /* particles: position in the row, or -1 */
   int *pcol;      /* a point's neighbours: their positions in the row */
+  const size_t *tptr; /* the plan's table (mfs_plan_table) and points */
+  const int *tidx;
+  const double *ttab, *qw, *qx;
+  const int *qnode;
+  int nc, dim;
   mfs_eval ev;    /* consistent Eulerian form: the point's offsets */
   int *eidx;
   double *dphi, *dgrad;

@@ -75,11 +75,13 @@ int mfs_eval_gather(mfs_eval *ev, const double *x, const double *xp, const doubl
     int J = cand[c];
     double *dj = ev->d + (size_t)k * dim;
     mfs_box_delta(ev->box, x, xp + (size_t)J * dim, dj);
-    double r2 = 0.0;
-    for (int l = 0; l < dim; l++)
-      r2 += dj[l] * dj[l];
-    if (!(r2 < a2))
-      continue;
+    if (!ev->within) {
+      double r2 = 0.0;
+      for (int l = 0; l < dim; l++)
+        r2 += dj[l] * dj[l];
+      if (!(r2 < a2))
+        continue;
+    }
     ev->v[k] = vol ? vol[J] : 0.0;
     if (J == self)
       s = k;

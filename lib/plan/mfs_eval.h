@@ -36,6 +36,8 @@ typedef struct {
   double *d, *v;       /* cap*dim offsets X_J - X, cap volumes of the last call */
   double *work;        /* the shape functions' scratch */
   mfs_shape_gather_1d_fn fast; /* the shape's fused 1D path, if in use (mfs_eval_fast) */
+  int within;          /* the candidates are known to lie within a (the plan's lists):
+                          the gather keeps them all without the distance test */
 } mfs_eval;
 
 /* An evaluator for the kernel, shape, support radius a and rcond threshold

@@ -1,0 +1,62 @@
+#!/usr/bin/env bash
+# Benchmark (not a test): the same benchmarks of two builds, side by side in
+# one run, alternating (the machine is shared: a run of one and a run of the
+# other, R times), and the ratio new/old of each timed quantity as min,
+# median and max over the repetitions.
+#   analysis/bench/compare_builds.sh OLD_BUILD NEW_BUILD [R]   (R default 5)
+# Rows (CSV on stdout): benchmark,quantity,old_min_s,new_min_s,ratio_min,ratio_median,ratio_max
+#   solver       bench_solver 100000 200: the step-loop seconds of each (frame, dilation)
+#   assembly     bench_assembly 500: the seconds of each phase and the total
+#   dispersion   bench_dispersion: seconds of each (family, phase)
+#   eigs         bench_eigs 316: the model setup, bound and eigenvalue seconds
+# Also prints the load average before and after.
+set -u
+OLD=${1:?usage: compare_builds.sh OLD_BUILD NEW_BUILD [R]}
+NEW=${2:?}
+R=${3:-5}
+tmp=$(mktemp -d)
+trap 'rm -rf "$tmp"' EXIT
+echo "load before: $(cut -d' ' -f1-3 /proc/loadavg)" >&2
+# run NAME BUILD I: the CSV of one benchmark into $tmp/NAME.BUILDTAG.I
+run() {
+  local name=$1 b=$2 tag=$3 i=$4 bin=$2/analysis/bench
+  case $name in
+  solver) "$bin/bench_solver" 100000 200 | awk -F, 'NR>1{print $3"_D"$4","$6}' ;;
+  assembly) "$bin/bench_assembly" 500 | awk -F, 'NR==1{for(k=1;k<=NF;k++)h[$k]=k; next}
+            {print $h["phase"]","$h["seconds"]}' ;;
+  dispersion) "$bin/bench_dispersion" 2>/dev/null | awk -F, 'NR>2{print $1"_"$2","$4}' ;;
+  eigs) "$bin/bench_eigs" 316 | awk -F, '{print "setup,"$5; print "bound,"$6; print "eig,"$7}' ;;
+  esac >"$tmp/$name.$tag.$i"
+}
+for name in solver assembly dispersion eigs; do
+  for i in $(seq "$R"); do
+    run "$name" "$OLD" old "$i"
+    run "$name" "$NEW" new "$i"
+  done
+done
+echo "benchmark,quantity,old_min_s,new_min_s,ratio_min,ratio_median,ratio_max"
+for name in solver assembly dispersion eigs; do
+  /usr/bin/python3 - "$tmp" "$name" "$R" <<'PY'
+import sys, statistics
+tmp, name, R = sys.argv[1], sys.argv[2], int(sys.argv[3])
+def load(tag, i):
+    d = {}
+    for line in open(f"{tmp}/{name}.{tag}.{i}"):
+        k, v = line.strip().rsplit(",", 1)
+        try:
+            d[k] = float(v)
+        except ValueError:
+            pass
+    return d
+old = [load("old", i) for i in range(1, R + 1)]
+new = [load("new", i) for i in range(1, R + 1)]
+for k in old[0]:
+    o = [r[k] for r in old if k in r and r[k] > 0]
+    n = [r[k] for r in new if k in r and r[k] > 0]
+    if len(o) != R or len(n) != R:
+        continue
+    ratios = [b / a for a, b in zip(o, n)]
+    print(f"{name},{k},{min(o):.4g},{min(n):.4g},{min(ratios):.3f},{statistics.median(ratios):.3f},{max(ratios):.3f}")
+PY
+done
+echo "load after: $(cut -d' ' -f1-3 /proc/loadavg)" >&2
