@@ -40,7 +40,8 @@ static const char about[] =
   "                   right_velocity (m/s), left_until, right_until (s; then 0)\n"
   "  [time]           end* (s), dt (s) or safety (0.9: dt = safety * dt_crit), scheme\n"
   "                   (leapfrog | euler | rk2 | rk4), force (0: a dt above the central-\n"
-  "                   difference limit 2/sqrt(lambda_max) is refused)\n"
+  "                   difference limit 2/sqrt(lambda_max) is refused), max_steps (10^8: a\n"
+  "                   longer run is refused)\n"
   "  [output]         probes* (v_center, u_center, kinetic_energy, potential_energy,\n"
   "                   total_energy, sigma_end, sigma_center, mode_amp, max_v, v_mid, v_err), every (1),\n"
   "                   mode (1: kappa dX/pi of mode_amp = (2/n) |sum_I u_I exp(-i kappa X_I)|)\n"
@@ -400,13 +401,21 @@ int cmd_run(int argc, char **argv)
     pc.es = ec + s.n;
   }
 
+  double steps = ceil(sc.end / s.dt * (1.0 - 1e-12));
+  if (!(steps <= (double)sc.max_steps)) {
+    T->free(in.solver);
+    scene_key_error(&sc, "time", "end",
+                    "%.4g steps of %.4g s; more than [time] max_steps = %ld: raise it to run "
+                    "that long",
+                    steps, s.dt, sc.max_steps);
+  }
+  long nsteps = (long)steps;
   cli_out out;
   cli_out_open(&out, o.out);
   fputs("t", out.f);
   for (int p = 0; p < sc.nprobes; p++)
     fprintf(out.f, ",%s", scene_probe_names[sc.probe[p]]);
   fputc('\n', out.f);
-  long nsteps = (long)ceil(sc.end / s.dt * (1.0 - 1e-12));
   int tty = isatty(STDERR_FILENO), shown = -1;
   mfs_status st;
   for (long k = 0;; k++) {
@@ -420,7 +429,11 @@ int cmd_run(int argc, char **argv)
       cli_fmt(b, sizeof b, s.t);
       fputs(b, out.f);
       for (int p = 0; p < sc.nprobes; p++) {
-        cli_fmt(b, sizeof b, probes[sc.probe[p]](&pc, &s));
+        double val = probes[sc.probe[p]](&pc, &s);
+        if (!isfinite(val))
+          cli_die(1, "%s: at t = %g s: probe %s is not finite (%g); no output written", sc.path,
+                  s.t, scene_probe_names[sc.probe[p]], val);
+        cli_fmt(b, sizeof b, val);
         fputc(',', out.f);
         fputs(b, out.f);
       }

@@ -9,6 +9,7 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <sys/stat.h>
 
 #include <ini.h>
 
@@ -28,7 +29,7 @@ typedef enum {
   /* [initial] */ CENTER_VELOCITY, PERTURBATION, SEED, PULSE_AMPLITUDE, PULSE_ALPHA, PULSE_CENTER,
   PULSE_CENTER_Y, MODE_X, MODE_Y, MODE_AMPLITUDE, COMPONENT,
   /* [boundary] */ LEFT, RIGHT, LEFT_VELOCITY, RIGHT_VELOCITY, LEFT_UNTIL, RIGHT_UNTIL, EDGES,
-  /* [time] */ END, DT, SAFETY, SCHEME, FORCE,
+  /* [time] */ END, DT, SAFETY, SCHEME, FORCE, MAX_STEPS,
   /* [output] */ PROBES, EVERY, MODE,
   NKEYS
 } key_id;
@@ -90,6 +91,7 @@ static const key_def keys[NKEYS] = {
   [SAFETY] = {"time", "safety", K_POS, 0},
   [SCHEME] = {"time", "scheme", K_WORD, 0},
   [FORCE] = {"time", "force", K_BOOL, 0},
+  [MAX_STEPS] = {"time", "max_steps", K_INT, 0},
   [PROBES] = {"output", "probes", K_WORD, 1},
   [EVERY] = {"output", "every", K_INT, 0},
   [MODE] = {"output", "mode", K_POS, 0},
@@ -178,24 +180,26 @@ static void set_key(scene *sc, int line, key_id id, const char *value)
   const key_def *k = &keys[id];
   double x = 0.0;
   long l = 0;
-  char *end;
-  errno = 0;
   switch (k->type) {
   case K_INT:
-    l = strtol(value, &end, 10);
-    if (end == value || *end || errno == ERANGE)
+    if (!cli_parse_long(value, &l))
       key_error(sc, line, k->section, k->name, value, "not an integer");
     break;
   case K_POS:
   case K_NONNEG:
   case K_REAL:
-    x = strtod(value, &end);
-    if (end == value || *end || errno == ERANGE || !isfinite(x))
-      key_error(sc, line, k->section, k->name, value, "not a number");
+    if (!cli_parse_double(value, &x))
+      key_error(sc, line, k->section, k->name, value,
+                "not a number; expected a finite decimal number");
     if (k->type == K_POS && !(x > 0.0))
       key_error(sc, line, k->section, k->name, value, "must be > 0");
     if (k->type == K_NONNEG && !(x >= 0.0))
       key_error(sc, line, k->section, k->name, value, "must be >= 0");
+    /* magnitudes whose products stay finite (moduli, lengths, times, amplitudes) */
+    if (!(fabs(x) <= SCENE_MAX_MAGNITUDE) || (k->type == K_POS && !(x >= SCENE_MIN_POSITIVE)))
+      key_error(sc, line, k->section, k->name, value, "out of range; allowed %s%g to %g",
+                k->type == K_REAL ? "magnitudes " : "", k->type == K_POS ? SCENE_MIN_POSITIVE : 0.0,
+                SCENE_MAX_MAGNITUDE);
     break;
   case K_BOOL:
     if (!strcmp(value, "1") || !strcmp(value, "true") || !strcmp(value, "yes"))
@@ -322,8 +326,8 @@ static void set_key(scene *sc, int line, key_id id, const char *value)
   case CENTER_VELOCITY: sc->center_velocity = x; break;
   case PERTURBATION: sc->perturbation = x; break;
   case SEED:
-    if (l < 0)
-      key_error(sc, line, k->section, k->name, value, "must be >= 0");
+    if (l < 0 || l > 4294967295L)
+      key_error(sc, line, k->section, k->name, value, "allowed 0 to 4294967295");
     sc->seed = (unsigned long)l;
     break;
   case PULSE_AMPLITUDE: sc->pulse_amplitude = x; break;
@@ -348,6 +352,11 @@ static void set_key(scene *sc, int line, key_id id, const char *value)
       key_error(sc, line, k->section, k->name, value, "allowed: leapfrog, euler, rk2, rk4, tsph");
     break;
   case FORCE: sc->force = (int)l; break;
+  case MAX_STEPS:
+    if (l < 1 || l > 1000000000000L)
+      key_error(sc, line, k->section, k->name, value, "allowed 1 to 1000000000000");
+    sc->max_steps = l;
+    break;
   case PROBES: {
     char buf[512];
     if (strlen(value) >= sizeof buf)
@@ -373,9 +382,9 @@ static void set_key(scene *sc, int line, key_id id, const char *value)
     break;
   }
   case EVERY:
-    if (l < 1)
-      key_error(sc, line, k->section, k->name, value, "must be >= 1");
-    sc->every = (int)l;
+    if (l < 1 || l > 2147483647L)
+      key_error(sc, line, k->section, k->name, value, "allowed 1 to 2147483647");
+    sc->every = l;
     break;
   case MODE:
     if (x > 1.0)
@@ -435,14 +444,29 @@ static int handler(void *user, const char *section, const char *name, const char
   return 1;
 }
 
-/* Line reader that counts lines for the messages. */
+/* Line reader that counts lines for the messages, and refuses what inih
+ * would misread: a line longer than its buffer (inih would read the tail as
+ * a line of its own) and a NUL byte (which would cut the value short). */
 static char *reader(char *str, int num, void *stream)
 {
   parse_ctx *c = stream;
-  char *r = fgets(str, num, c->f);
-  if (r)
-    c->line++;
-  return r;
+  int k = 0, ch = EOF;
+  while (k < num - 1 && (ch = getc(c->f)) != EOF) {
+    if (ch == '\0')
+      cli_die(2, "%s:%d: a NUL byte; a scene file is text", c->sc->path, c->line + 1);
+    str[k++] = (char)ch;
+    if (ch == '\n')
+      break;
+  }
+  if (k == 0)
+    return NULL;
+  str[k] = '\0';
+  c->line++;
+  if (str[k - 1] != '\n' && k == num - 1 && (ch = getc(c->f)) != EOF) {
+    if (ch != '\n')
+      cli_die(2, "%s:%d: line longer than %d characters", c->sc->path, c->line, num - 2);
+  }
+  return str;
 }
 
 static void defaults(scene *sc, const char *path)
@@ -465,6 +489,7 @@ static void defaults(scene *sc, const char *path)
   sc->safety = 0.9;
   sc->scheme = MFS_SCHEME_LEAPFROG;
   sc->every = 1;
+  sc->max_steps = 100000000; /* 10^8: a limit on the work, raised by [time] max_steps */
   sc->mode = 1.0;
   sc->pulse_alpha = 1.0;
   sc->yield_stress = INFINITY;
@@ -480,6 +505,13 @@ void scene_load(scene *sc, const char *path)
   parse_ctx c = {sc, 0, fopen(path, "r")};
   if (!c.f)
     cli_die(2, "%s: cannot open the scene file (%s)", path, strerror(errno));
+  struct stat st;
+  if (fstat(fileno(c.f), &st) == 0 && !S_ISREG(st.st_mode) && !S_ISFIFO(st.st_mode) &&
+      !S_ISCHR(st.st_mode)) {
+    fclose(c.f);
+    cli_die(2, "%s: %s; expected a scene file", path,
+            S_ISDIR(st.st_mode) ? "is a directory" : "not a regular file");
+  }
   int r = ini_parse_stream(reader, &c, handler, &c);
   fclose(c.f);
   if (r > 0)
@@ -533,6 +565,14 @@ static const struct {
 static const key_id only_2d[] = {NODES_Y, LENGTH_Y, PHYSICS, POISSON, PULSE_CENTER_Y, MODE_X,
                                  MODE_Y, MODE_AMPLITUDE, COMPONENT, EDGES};
 
+/* A pulse centred outside the body [0, length] starts nothing (and v_err
+ * would divide by a zero exact solution). */
+static void check_pulse_center(const scene *sc, const char *key, double c, double length)
+{
+  if (values[PULSE_AMPLITUDE][0] && !(c >= 0.0 && c <= length))
+    scene_key_error(sc, "initial", key, "outside the body; allowed 0 to %g (m)", length);
+}
+
 static void finish_2d(scene *sc)
 {
   mfs_solver_spec *sp = &sc->spec;
@@ -579,6 +619,8 @@ static void finish_2d(scene *sc)
                     "the Bloch mode needs a periodic box ([model] periodic = 1)");
   if (sc->have_dt && values[SAFETY][0])
     scene_key_error(sc, "time", "safety", "give either dt or safety, not both");
+  check_pulse_center(sc, "pulse_center", sc->pulse_center, sp->disc.source.lx);
+  check_pulse_center(sc, "pulse_center_y", sc->pulse_center_y, sc->ly);
   for (int p = 0; p < sc->nprobes; p++) {
     int q = sc->probe[p];
     if (q == PROBE_SIGMA_END || q == PROBE_SIGMA_CENTER || q == PROBE_V_MID || q == PROBE_V_ERR)
@@ -630,6 +672,7 @@ void scene_finish(scene *sc)
                       "needs [boundary] %s = velocity", k ? "right" : "left");
   if (sc->have_dt && values[SAFETY][0])
     scene_key_error(sc, "time", "safety", "give either dt or safety, not both");
+  check_pulse_center(sc, "pulse_center", sc->pulse_center, sp->disc.source.lx);
   int uses_v_err = 0;
   for (int p = 0; p < sc->nprobes; p++)
     uses_v_err |= sc->probe[p] == PROBE_V_ERR;

@@ -12,6 +12,10 @@
 #include "mfs_tsph.h"
 
 #define SCENE_MAX_PROBES 16
+/* The range of real keys: magnitudes up to 1e30, positive keys from 1e-30,
+ * so that products (moduli over lengths squared, energies) stay finite. */
+#define SCENE_MAX_MAGNITUDE 1e30
+#define SCENE_MIN_POSITIVE 1e-30
 #define SCENE_MAX_KEYS 64
 
 typedef struct {
@@ -43,13 +47,14 @@ typedef struct {
   /* [time] */
   double end, dt, safety;
   int have_dt, force;
+  long max_steps;          /* refuse a run of more steps (default 10^8) */
   mfs_scheme scheme;
   int tsph;                /* scheme = tsph given */
   mfs_tsph_scheme tscheme; /* stress_velocity: tsph | euler | rk2 | rk4 */
   /* [output] */
   int nprobes;
   int probe[SCENE_MAX_PROBES];
-  int every;
+  long every;
   double mode;             /* kappa dX / pi of the mode_amp probe */
   /* where each key was set (line, or 0 for --set / default) */
   int line[SCENE_MAX_KEYS];

@@ -19,17 +19,17 @@ void mfs_grid_free(mfs_grid *g)
 /* Cell coordinate of x along direction k, wrapped or clamped. */
 static int cell_coord(const mfs_grid *g, int k, double x)
 {
-  int c = (int)floor((x - g->box.lo[k]) / g->h[k]);
-  if (g->box.periodic) {
-    c %= g->nc[k];
-    if (c < 0)
-      c += g->nc[k];
-  } else if (c < 0) {
-    c = 0;
-  } else if (c >= g->nc[k]) {
-    c = g->nc[k] - 1;
+  double t = floor((x - g->box.lo[k]) / g->h[k]);
+  if (g->box.periodic) { /* wrap in double: no int overflow for far points */
+    t = fmod(t, (double)g->nc[k]);
+    if (t < 0.0)
+      t += g->nc[k];
   }
-  return c;
+  if (!(t >= 0.0)) /* also NaN */
+    return 0;
+  if (t >= (double)g->nc[k])
+    return g->nc[k] - 1;
+  return (int)t;
 }
 
 static size_t cell_of(const mfs_grid *g, const double *x)
@@ -45,8 +45,14 @@ mfs_grid *mfs_grid_alloc(int dim, size_t n, const double *x, const mfs_box *box,
 {
   mfs_status st = MFS_EINVAL;
   mfs_grid *g = NULL;
-  if (!(radius > 0.0) || dim < 1 || dim > 3)
+  if (!(radius > 0.0) || !isfinite(radius) || dim < 1 || dim > 3 || n > (size_t)INT_MAX)
     goto fail;
+  for (int k = 0; k < dim; k++)
+    if (!isfinite(box->lo[k]) || !isfinite(box->hi[k]) || !(box->hi[k] >= box->lo[k]))
+      goto fail;
+  for (size_t i = 0; i < n * (size_t)dim; i++)
+    if (!isfinite(x[i]))
+      goto fail;
   st = MFS_ENOMEM;
   g = calloc(1, sizeof *g);
   if (!g)
@@ -57,6 +63,7 @@ mfs_grid *mfs_grid_alloc(int dim, size_t n, const double *x, const mfs_box *box,
   g->box = *box;
   g->radius = radius;
   size_t ncells = 1;
+  double want[3] = {1.0, 1.0, 1.0}; /* cells of side just over radius/2 */
   for (int k = 0; k < 3; k++) {
     g->nc[k] = 1;
     g->h[k] = 1.0;
@@ -73,8 +80,20 @@ mfs_grid *mfs_grid_alloc(int dim, size_t n, const double *x, const mfs_box *box,
      * cells away after rounding of the cell coordinates.  The number of
      * cells stays bounded by the number of points. */
     double hmin = 0.5 * radius * (1.0 + 1e-6);
-    double ncd = L > 0.0 ? floor(L / hmin) : 1.0, ncmax = fmin(4.0 * (double)n + 4.0, INT_MAX);
-    int nc = ncd < 1.0 ? 1 : (int)(ncd < ncmax ? ncd : ncmax); /* no int overflow */
+    want[k] = L > 0.0 ? floor(L / hmin) : 1.0;
+    if (!(want[k] >= 1.0))
+      want[k] = 1.0;
+  }
+  /* at most about 4 n + 4 cells in all (a sparse set in a large box): the
+   * directions are thinned in proportion */
+  double total = 1.0, cap = 4.0 * (double)n + 4.0;
+  for (int k = 0; k < dim; k++)
+    total *= want[k];
+  double shrink = total > cap ? pow(cap / total, 1.0 / dim) : 1.0;
+  for (int k = 0; k < dim; k++) {
+    double L = box->hi[k] - box->lo[k], hmin = 0.5 * radius * (1.0 + 1e-6);
+    double ncd = floor(want[k] * shrink);
+    int nc = ncd < 1.0 ? 1 : (int)fmin(ncd, (double)INT_MAX);
     g->nc[k] = nc;
     g->h[k] = L > 0.0 ? L / nc : 1.0;
     if (!box->periodic && g->h[k] < hmin)
