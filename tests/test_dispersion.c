@@ -467,6 +467,37 @@ static void consistent_frame(void)
     }
 }
 
+/* Hermitian symbols are solved as Hermitian: omega^2 exactly real (issue 12:
+ * round-off imaginary parts made every row look unstable). */
+static void hermitian_real(void)
+{
+  static const char *quads[] = {"nodal", "stress", "gauss2"};
+  for (int q = 0; q < 3; q++) {
+    mfs_disp_plan *p = plan1d(quads[q], &mfs_kernel_cubic, &mfs_shape_mls, 1.7, MFS_FRAME_LAGRANGIAN, 0);
+    int bad = 0;
+    for (int i = 0; p && i <= 200; i++) {
+      double complex w[4];
+      bad += mfs_disp_omega2(p, 0.37, i / 200.0, 0.0, w) != MFS_OK || cimag(w[0]) != 0.0;
+    }
+    CHECK(bad == 0, "1D Lagrangian %s: %d wave numbers with Im omega^2 != 0", quads[q], bad);
+    mfs_disp_plan_free(p);
+  }
+  static const char *q2[] = {"nodal", "stress-tri", "stress-star", "gauss2"};
+  for (int q = 0; q < 4; q++)
+    for (int ph = 0; ph < 2; ph++) {
+      mfs_disp_plan *p = plan2d(MFS_LATTICE_SQUARE, q2[q], ph ? MFS_PHYS_PLANE_STRAIN : MFS_PHYS_SCALAR);
+      int bad = 0, nb = p ? mfs_disp_branches(p) : 0;
+      for (int i = 0; p && i <= 50; i++) {
+        double complex w[4];
+        bad += mfs_disp_omega2(p, 0.0, i / 50.0, 0.3817, w) != MFS_OK;
+        for (int b = 0; b < nb; b++)
+          bad += cimag(w[b]) != 0.0;
+      }
+      CHECK(bad == 0, "2D %s %s: %d values with Im omega^2 != 0", q2[q], ph ? "plane strain" : "anti-plane", bad);
+      mfs_disp_plan_free(p);
+    }
+}
+
 static void errors(void)
 {
   mfs_status st;
@@ -495,6 +526,7 @@ int main(void)
   geometry();
   paths_agree();
   consistent_frame();
+  hermitian_real();
   errors();
   return check_summary("test_dispersion");
 }

@@ -7,6 +7,7 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "mfs_lapack.h"
 #include "mfs_status.h"
 
 typedef struct {
@@ -264,32 +265,47 @@ mfs_status mfs_disp_omega2(const mfs_disp_plan *dp, double sbar, double kappa, d
     k[0] = kappa * M_PI, k[1] = 0.0;
   double complex K[16], M[16];
   mfs_disp_symbols(dp, sbar, k, K, M);
+  /* Hermitian symbols (Lagrangian kernels and the 2D operators, without the
+   * least-squares mass) are solved as Hermitian: omega^2 is exactly real */
+  int herm = dp->spec.disc.frame == MFS_FRAME_LAGRANGIAN || dp->spec.disc.dim == 2;
+  herm = herm && dp->spec.ls_beta == 0.0;
   if (n == 1) {
     if (cabs(M[0]) == 0.0)
       return MFS_EDOMAIN;
-    omega2[0] = K[0] / M[0];
-    return MFS_OK;
+    omega2[0] = herm ? creal(K[0]) / creal(M[0]) : K[0] / M[0];
+    return isfinite(creal(omega2[0])) && isfinite(cimag(omega2[0])) ? MFS_OK : MFS_EDOMAIN;
   }
-  int herm = dp->spec.disc.frame == MFS_FRAME_LAGRANGIAN || dp->spec.disc.dim == 2;
-  /* (1D Eulerian symbols are 1 x 1) */
-  herm = herm && dp->spec.ls_beta == 0.0;
+  /* The _work drivers on stack workspaces, column-major: no allocation (and
+   * no LAPACKE message).  The row-major symbols read column-major are their
+   * transposes: the same eigenvalues; 'L' reads the elements 'U' reads in
+   * row-major. */
+  double complex work[64];
+  double rwork[32];
+  mfs_lapack_reset();
   if (herm) {
     double wr[4];
-    lapack_int info = LAPACKE_zhegv(LAPACK_ROW_MAJOR, 1, 'N', 'U', n, K, n, M, n, wr);
-    if (info != 0)
+    lapack_int info = LAPACKE_zhegv_work(LAPACK_COL_MAJOR, 1, 'N', 'L', n, K, n, M, n, wr, work,
+                                         64, rwork);
+    if (info != 0 || mfs_lapack_last()->count > 0)
       return info > n ? MFS_EDOMAIN : MFS_ELAPACK;
-    for (int i = 0; i < n; i++)
+    for (int i = 0; i < n; i++) {
+      if (!isfinite(wr[i]))
+        return MFS_EDOMAIN;
       omega2[i] = wr[i];
+    }
     return MFS_OK;
   }
   double complex al[4], be[4], vl[1], vr[1];
-  lapack_int info = LAPACKE_zggev(LAPACK_ROW_MAJOR, 'N', 'N', n, K, n, M, n, al, be, vl, 1, vr, 1);
-  if (info != 0)
+  lapack_int info = LAPACKE_zggev_work(LAPACK_COL_MAJOR, 'N', 'N', n, K, n, M, n, al, be, vl, 1,
+                                       vr, 1, work, 64, rwork);
+  if (info != 0 || mfs_lapack_last()->count > 0)
     return MFS_ELAPACK;
   for (int i = 0; i < n; i++) {
     if (cabs(be[i]) == 0.0)
       return MFS_EDOMAIN;
     omega2[i] = al[i] / be[i];
+    if (!isfinite(creal(omega2[i])) || !isfinite(cimag(omega2[i])))
+      return MFS_EDOMAIN;
   }
   qsort(omega2, (size_t)n, sizeof *omega2, cmp_re);
   return MFS_OK;

@@ -7,6 +7,7 @@
 #include <string.h>
 #include <suitesparse/cholmod.h>
 
+#include "mfs_lapack.h"
 #include "mfs_status.h"
 
 /* ARPACK (arpack-ng, gfortran, 32-bit integers): Fortran symbols with the
@@ -283,9 +284,18 @@ static int arpack_run(arpack_job *j, mfs_eig_info *info)
   iparam[2] = j->maxiter;
   iparam[3] = 1;
   iparam[6] = j->mode;
+  mfs_lapack_reset(); /* LAPACK's complaints inside ARPACK (mfs_lapack.h) */
   for (;;) {
     dsaupd_(&ido, &j->bmat, &n, j->which, &nev, &j->tol, resid, &ncv, v, &ldv, iparam, ipntr,
             workd, workl, &lworkl, &ainfo, 1, 2);
+    if (mfs_lapack_last()->count > 0) {
+      st = MFS_EARPACK;
+      if (info) {
+        info->info = mfs_lapack_last()->info;
+        info->routine = "dsaupd (LAPACK)";
+      }
+      goto done;
+    }
     if (ido == -1 || ido == 1 || ido == 2) {
       st = j->op(j->ctx, ido, workd + ipntr[0] - 1, workd + ipntr[1] - 1,
                  ido == 1 && j->mode == 3 ? workd + ipntr[2] - 1 : NULL);
@@ -320,6 +330,8 @@ static int arpack_run(arpack_job *j, mfs_eig_info *info)
   int rvec = 1, einfo = 0;
   dseupd_(&rvec, "A", select, dd, v, &ldv, &j->sigma, &j->bmat, &n, j->which, &nev, &j->tol,
           resid, &ncv, v, &ldv, iparam, ipntr, workd, workl, &lworkl, &einfo, 1, 1, 2);
+  if (einfo == 0 && mfs_lapack_last()->count > 0)
+    einfo = -mfs_lapack_last()->info - 1000; /* a LAPACK argument error inside dseupd */
   if (einfo != 0) {
     st = MFS_EARPACK;
     if (info) {
@@ -812,10 +824,13 @@ mfs_status mfs_eig_dense(const mfs_pencil *P, double *w)
     for (size_t i = 0; i < n; i++)
       B[i * n + i] = P->m[i];
   }
+  mfs_lapack_reset();
   lapack_int info = LAPACKE_dsygvd(LAPACK_ROW_MAJOR, 1, 'N', 'U', (lapack_int)n, A,
                                    (lapack_int)n, B, (lapack_int)n, w);
-  if (info == 0)
+  if (info == 0 && mfs_lapack_last()->count == 0)
     st = MFS_OK;
+  else if (info == LAPACK_WORK_MEMORY_ERROR || info == LAPACK_TRANSPOSE_MEMORY_ERROR)
+    st = MFS_ENOMEM;
   else
     st = info > (lapack_int)n ? MFS_EDOMAIN : MFS_ELAPACK;
 done:
