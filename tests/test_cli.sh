@@ -114,6 +114,17 @@ bad_cmd eigs --tol --tol 0
 bad_cmd bound --nodes --nodes 4 --periodic --dilation 2
 bad_cmd bound --zero-modes --zero-modes
 
+# magnitudes outside the documented ranges, and work past the limit
+bad_cmd eigs --modulus --modulus 1e31
+bad_cmd eigs --density --density 1e-31
+bad_cmd eigs --modulus --modulus 1e400
+bad_cmd dispersion --stretch --stretch 1e4
+bad_cmd dispersion --stress --stress 2e6
+bad_cmd dispersion --kappa --kappa 2e6
+bad_input --gamma --dim 2 --gamma 1e7
+bad_cmd eigs --max-entries --nodes 100000 --dilation 3000
+bad_cmd eigs --max-entries --nodes 1000 --max-entries 100
+
 # a numerical failure (ARPACK stopped after one iteration): exit 1, no file
 mkdir -p "$tmp/res"
 run eigs --nodes 3000 --maxiter 1 --ncv 3 --arpack-tol 1e-15 -o "$tmp/res/out.csv"

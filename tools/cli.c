@@ -67,6 +67,17 @@ int cli_parse_double(const char *s, double *v)
   return 1;
 }
 
+const char *cli_number_problem(const char *s)
+{
+  double v;
+  char *end;
+  if (cli_parse_double(s, &v))
+    return NULL;
+  if (s[0] != '\0' && (strtod(s, &end), *end == '\0') && strpbrk(s, "nNiIxX") == NULL)
+    return "out of range; larger in magnitude than a double holds (1.8e308)";
+  return "not a number; expected a finite decimal number";
+}
+
 int cli_parse_long(const char *s, long *v)
 {
   const char *c = s;
@@ -84,7 +95,7 @@ double cli_double(const char *opt, const char *val)
 {
   double v;
   if (!cli_parse_double(val, &v))
-    cli_die(2, "%s '%s': not a number; expected a finite decimal number", opt, val);
+    cli_die(2, "%s '%s': %s", opt, val, cli_number_problem(val));
   return v;
 }
 
@@ -159,7 +170,7 @@ static void set_value(const cli_opt *o, void *base, const char *val)
   case CLI_REAL: {
     double v;
     if (!cli_parse_double(val, &v))
-      cli_die(2, "%s '%s': not a number; expected a finite decimal number", o->name, val);
+      cli_die(2, "%s '%s': %s", o->name, val, cli_number_problem(val));
     check_bounds(o, val, v);
     *(double *)at = v;
     break;
@@ -181,12 +192,11 @@ static void set_value(const cli_opt *o, void *base, const char *val)
       if (*s == '\0')
         cli_die(2, "%s '%s': empty list element; expected comma-separated numbers", o->name, val);
       if (!cli_parse_double(s, &v[k]))
-        cli_die(2, "%s '%s': '%s' is not a number; expected comma-separated numbers", o->name, val,
-                s);
+        cli_die(2, "%s '%s': '%s': %s", o->name, val, s, cli_number_problem(s));
       if (!in_bounds(o, v[k])) {
         char b[160];
         bounds_text(o, b, sizeof b);
-        cli_die(2, "%s %s: %s out of range; every value %s", o->name, val, s, b + 5);
+        cli_die(2, "%s %s: %s out of range; every value %s", o->name, val, s, b);
       }
       k++;
       if (!comma)
@@ -451,13 +461,18 @@ const cli_opt cli_disc_opts[] = {
    .help = "mass matrix (default lumped, row sum)", .offset = DOFF(mass), .choices = mass_names},
   {.name = "--modulus", .type = CLI_REAL, .arg = "C",
    .help = "tangent modulus (E in 1D, shear modulus in 2D; default 1)", .offset = DOFF(modulus),
-   .bounds = CLI_GT, .lo = 0},
+   .bounds = CLI_GE | CLI_LE, .lo = 1e-30, .hi = 1e30},
   {.name = "--density", .type = CLI_REAL, .arg = "RHO", .help = "density (default 1)",
-   .offset = DOFF(density), .bounds = CLI_GT, .lo = 0},
+   .offset = DOFF(density),
+   .bounds = CLI_GE | CLI_LE, .lo = 1e-30, .hi = 1e30},
   {.name = "--spacing", .type = CLI_REAL, .arg = "DX", .help = "particle spacing (default 1)",
-   .offset = DOFF(spacing), .bounds = CLI_GT, .lo = 0},
+   .offset = DOFF(spacing),
+   .bounds = CLI_GE | CLI_LE, .lo = 1e-30, .hi = 1e30},
   {.name = "--gamma", .type = CLI_REAL, .arg = "G", .help = "dy/dx of the square lattice (default 1)",
-   .offset = DOFF(gamma), .bounds = CLI_GT, .lo = 0},
+   .offset = DOFF(gamma), .bounds = CLI_GE | CLI_LE, .lo = 1e-6, .hi = 1e6},
+  {.name = "--max-entries", .type = CLI_REAL, .arg = "N",
+   .help = "refuse a plan of more neighbour entries (default 5e8, about 15 GB in 2D)",
+   .offset = DOFF(max_entries), .bounds = CLI_GE | CLI_LE, .lo = 1, .hi = 1e15},
   {.type = CLI_END}};
 
 const cli_opt cli_physics_opts[] = {
@@ -488,7 +503,8 @@ void cli_disc_defaults(cli_disc *d)
                   .spacing = 1.0,
                   .gamma = 1.0,
                   .physics = 0,
-                  .poisson = 0.25};
+                  .poisson = 0.25,
+                  .max_entries = CLI_MAX_ENTRIES};
 }
 
 mfs_disc cli_disc_build(const cli_disc *o, const unsigned char *seen)
@@ -521,6 +537,15 @@ mfs_disc cli_disc_build(const cli_disc *o, const unsigned char *seen)
                               .poisson = o->poisson,
                               .density = o->density};
   return d;
+}
+
+void cli_check_work(const cli_disc *o, const mfs_disc *d, double n, const char *what)
+{
+  double entries = mfs_disc_plan_entries(d, n, NULL);
+  if (!(entries <= o->max_entries))
+    cli_die(2, "%s: about %.3g neighbour entries in the plan, more than --max-entries %.3g; "
+               "lower the dilation or the nodes, or raise --max-entries",
+            what, entries, o->max_entries);
 }
 
 _Noreturn void cli_die_status(mfs_status status, const cli_disc *d, double dilation,

@@ -21,6 +21,8 @@ _Noreturn void cli_die(int code, const char *fmt, ...);
  * leading or trailing space, no inf/nan), an integer in [lo, hi]; 1 on
  * success.  The cli_* forms die with a message naming opt. */
 int cli_parse_double(const char *s, double *v);
+/* Why s is not a strict finite decimal number (NULL when it is one). */
+const char *cli_number_problem(const char *s);
 int cli_parse_long(const char *s, long *v);
 double cli_double(const char *opt, const char *val);
 long cli_long(const char *opt, const char *val, long lo, long hi);
@@ -110,11 +112,13 @@ typedef struct {
   double modulus, density, spacing, gamma;
   int physics;                     /* antiplane (scalar), plane-strain */
   double poisson;
+  double max_entries;              /* the limit on a plan's neighbour entries */
 } cli_disc;
 
 extern const cli_opt cli_disc_opts[];     /* --dim .. --gamma */
 extern const cli_opt cli_physics_opts[];  /* --physics, --poisson */
-#define CLI_DISC_NOPTS 12                 /* entries of cli_disc_opts, CLI_END included */
+#define CLI_DISC_NOPTS 13                 /* entries of cli_disc_opts, CLI_END included */
+#define CLI_MAX_ENTRIES 5e8               /* the default limit on a plan's neighbour entries */
 #define CLI_PHYSICS_NOPTS 3
 
 /* The defaults (1D, cubic, D = 2, mls, nodal, lumped, unit modulus,
@@ -126,6 +130,12 @@ void cli_disc_defaults(cli_disc *d);
  * source), dilation: its first value.  Cross-option checks (lattice and
  * dimension, quadrature and lattice, plane strain in 2D) die with one line. */
 mfs_disc cli_disc_build(const cli_disc *o, const unsigned char *seen_disc);
+
+/* A limit on the work: die (exit 2) when a plan of d on n particles would
+ * hold more than o->max_entries neighbour entries (mfs_disc_plan_entries),
+ * naming what makes it large (`what`: "--dilation 40 on 10^6 nodes") and the
+ * override --max-entries. */
+void cli_check_work(const cli_disc *o, const mfs_disc *d, double n, const char *what);
 
 /* Die with the right message and code for a library status met while
  * building the discretization of o (what: where it happened). */

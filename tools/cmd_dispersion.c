@@ -44,24 +44,26 @@ static const cli_opt opts[] = {
            "current coordinates (1D; mls, shepard, sph)",
    .offset = OFF(frame), .choices = frame_names},
   {.name = "--stress", .type = CLI_REALS, .arg = "LIST",
-   .help = "comma-separated normalized stresses sigma/C (default 0)", .offset = OFF(stress)},
+   .help = "comma-separated normalized stresses sigma/C (default 0)", .offset = OFF(stress),
+   .bounds = CLI_GE | CLI_LE, .lo = -1e6, .hi = 1e6},
   {.name = "--stretch", .type = CLI_REAL, .arg = "F",
    .help = "pre-stretch of the 1D Eulerian analysis (default 1)", .offset = OFF(stretch),
-   .bounds = CLI_GT, .lo = 0},
+   .bounds = CLI_GE | CLI_LE, .lo = 1e-3, .hi = 1e3},
   {.name = "--ls-alpha", .type = CLI_REAL, .arg = "A",
    .help = "least-squares stabilization beta = A (L dx)^2 (eq. 104)", .offset = OFF(ls_alpha),
-   .bounds = CLI_GE, .lo = 0},
+   .bounds = CLI_GE | CLI_LE, .lo = 0, .hi = 1e6},
   {.name = "--ls-length", .type = CLI_REAL, .arg = "L",
    .help = "the length L of --ls-alpha, in dx (default 1)", .offset = OFF(ls_length),
-   .bounds = CLI_GT, .lo = 0},
+   .bounds = CLI_GT | CLI_LE, .lo = 0, .hi = 1e3},
   {.name = "--theta", .type = CLI_REALS, .arg = "LIST",
-   .help = "propagation angles in degrees (2D only; default 0)", .offset = OFF(theta)},
+   .help = "propagation angles in degrees (2D only; default 0)", .offset = OFF(theta),
+   .bounds = CLI_GE | CLI_LE, .lo = -360, .hi = 360},
   {.name = "--points", .type = CLI_INT, .arg = "N",
    .help = "kappa uniform on [0, kappa_max(theta)] (default 101)", .offset = OFF(points),
    .bounds = CLI_GE | CLI_LE, .lo = 2, .hi = 10000000},
   {.name = "--kappa", .type = CLI_REALS, .arg = "LIST",
    .help = "exact kappa values (kappa*dx/pi) instead of --points", .offset = OFF(kappa),
-   .bounds = CLI_GE, .lo = 0},
+   .bounds = CLI_GE | CLI_LE, .lo = 0, .hi = 1e6},
   {.name = "--classify", .type = CLI_FLAG,
    .help = "write the classification instead of the curves", .offset = OFF(classify)},
   {.name = "-o", .type = CLI_TEXT, .arg = "FILE",
@@ -118,6 +120,14 @@ int cmd_dispersion(int argc, char **argv)
     cli_die(1, "out of memory");
   for (size_t t = 0; t < nth; t++)
     thr[t] = th[t] * M_PI / 180.0;
+  for (size_t i = 0; i < ndil; i++) { /* the work: the periodic box of the unit cell */
+    mfs_disc di = disc;
+    di.dilation = dil[i];
+    double side = 4.0 * ceil(2.0 * dil[i]) + 4.0;
+    char what[64];
+    snprintf(what, sizeof what, "--dilation %g", dil[i]);
+    cli_check_work(&d, &di, disc.dim == 1 ? side : side * side, what);
+  }
   for (size_t i = 0; i < ndil; i++) {
     mfs_disp_spec s = {.disc = disc,
                        .stretch = o.stretch,

@@ -174,6 +174,9 @@ void model_finish(model_cmd *c, const cli_group *dg, const cli_group *mg)
                              .ly = dim == 2 ? ly : 1.0,
                              .periodic = o->periodic};
   c->s = (mfs_model_spec){.disc = disc, .fixed = fx};
+  char what[96];
+  snprintf(what, sizeof what, "--dilation %g on %.0f nodes", disc.dilation, (double)nx * ny);
+  cli_check_work(d, &disc, (double)nx * (double)ny, what);
   const char *field;
   mfs_status st = mfs_model_spec_check(&c->s, &field);
   if (st == MFS_ETOOSMALL)
@@ -377,8 +380,12 @@ int cmd_eigs(int argc, char **argv)
       if (!r)
         cli_die(1, "out of memory");
       mfs_model_rigid_fields(m, r);
-      for (int k = 0; k < nr; k++)
-        rigid += mfs_eig_is_null(&P, r + (size_t)k * m->n, lam, e.tol);
+      for (int k = 0; k < nr; k++) {
+        int null;
+        if (mfs_eig_is_null(&P, r + (size_t)k * m->n, lam, e.tol, &null) != MFS_OK)
+          cli_die(1, "zero-energy modes: out of memory");
+        rigid += null;
+      }
       free(r);
     }
   }

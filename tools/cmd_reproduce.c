@@ -50,10 +50,8 @@ static void sub(int (*cmd)(int, char **), const char *name, const char *file, ..
   argv[argc++] = "-o";
   argv[argc++] = path;
   argv[argc] = NULL;
-  const char *saved = cli_command;
-  cli_command = name;
+  (void)name; /* messages keep saying "mfstab reproduce" */
   cmd(argc, argv);
-  cli_command = saved;
 }
 
 static void table1(void)
@@ -295,8 +293,11 @@ int cmd_reproduce(int argc, char **argv)
   cli_group g = {opts, &o, seen};
   cli_parse(argc, argv, usage, about, &g, 1);
   outdir = o.out;
+  struct stat sb;
   if (mkdir(outdir, 0777) != 0 && errno != EEXIST)
     cli_die(2, "--out %s: cannot create the directory (%s)", outdir, strerror(errno));
+  if (stat(outdir, &sb) != 0 || !S_ISDIR(sb.st_mode))
+    cli_die(2, "--out %s: not a directory; expected a directory for the CSV files", outdir);
   printf("%-44s %-14s %-14s %s\n", "artifact", "paper", "mfstab", "status");
   table1();
   table2();

@@ -21,7 +21,8 @@ static const char about[] =
   "(dim = 2, lib/time/mfs_solver2d.h) described by an INI scene file; writes CSV columns t followed\n"
   "by the probes of [output] probes.\n"
   "Sections and keys (defaults in parentheses; * required):\n"
-  "  [model]          nodes*, length* (m), periodic (0), dim (1 | 2), formulation (displacement |\n"
+  "  [model]          nodes*, length* (m), periodic (0), max_entries (5e8: a larger plan is\n"
+  "                   refused), dim (1 | 2), formulation (displacement |\n"
   "                   stress_velocity: the TSPH bar of lib/time/mfs_tsph.h, schemes tsph (default),\n"
   "                   euler, rk2, rk4; [material] yield_stress, fluidity, perzyna_exponent,\n"
   "                   hardening; [discretization] interpolation (shepard | linear),\n"
@@ -224,6 +225,15 @@ static mfs_integrator build(scene *sc)
   mfs_integrator in = {.scheme = sc->scheme};
   mfs_status st;
   size_t bad = 0;
+  /* a limit on the work before anything is built */
+  mfs_disc d = sc->dim == 2 ? scene_model_spec(sc).disc : sc->spec.disc;
+  double n = (double)d.source.nx * (sc->dim == 2 ? (double)sc->ny : 1.0);
+  double entries = mfs_disc_plan_entries(&d, n, NULL);
+  if (!(entries <= sc->max_entries))
+    scene_key_error(sc, "discretization", "dilation",
+                    "about %.3g neighbour entries in the plan, more than [model] max_entries = "
+                    "%.3g; lower the dilation or the nodes, or raise max_entries",
+                    entries, sc->max_entries);
   if (sc->dim == 2) {
     mfs_model_spec ms = scene_model_spec(sc);
     in.type = &mfs_integrator_plate;

@@ -1,6 +1,7 @@
 /* mfstab stencil: the stiffness and mass entries K_jk, M_jk coupling an
  * interior particle with the particle at lattice offset (j, k) on an
  * infinite lattice (paper 003 eq. 114 and Table I). */
+#include <math.h>
 #include <stdlib.h>
 #include <string.h>
 
@@ -36,6 +37,10 @@ int cmd_stencil(int argc, char **argv)
   if (d.dilation.n > 1)
     cli_die(2, "--dilation: one value, not a list");
   mfs_disc disc = cli_disc_build(&d, seen_d);
+  char what[96];
+  double side = 4.0 * ceil(2.0 * disc.dilation) + 4.0; /* the periodic box of mfs_stencil */
+  snprintf(what, sizeof what, "--dilation %g", disc.dilation);
+  cli_check_work(&d, &disc, disc.dim == 1 ? side : side * side, what);
   mfs_stencil_entry *e;
   size_t n, bad = 0;
   mfs_status st = mfs_stencil(&disc, &e, &n, &bad);

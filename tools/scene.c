@@ -22,7 +22,7 @@ const char *const scene_probe_names[PROBE_COUNT] = {
 typedef enum { K_INT, K_POS, K_NONNEG, K_REAL, K_BOOL, K_WORD } key_type;
 
 typedef enum {
-  /* [model] */ NODES, LENGTH, PERIODIC, FORMULATION, DIM, NODES_Y, LENGTH_Y, PHYSICS,
+  /* [model] */ NODES, LENGTH, PERIODIC, FORMULATION, DIM, NODES_Y, LENGTH_Y, PHYSICS, MAX_ENTRIES,
   /* [material] */ DENSITY, MODULUS, INITIAL_STRESS, YIELD_STRESS, FLUIDITY, EXPONENT, HARDENING,
   POISSON,
   /* [discretization] */ INTERPOLATION, VISCOSITY, KERNEL, DILATION, SHAPE, FRAME, QUADRATURE, EQUILIBRATE, SKIN,
@@ -51,6 +51,7 @@ static const key_def keys[NKEYS] = {
   [NODES_Y] = {"model", "nodes_y", K_INT, 0},   /* required when dim = 2 */
   [LENGTH_Y] = {"model", "length_y", K_POS, 0}, /* required when dim = 2 */
   [PHYSICS] = {"model", "physics", K_WORD, 0},
+  [MAX_ENTRIES] = {"model", "max_entries", K_POS, 0},
   [DENSITY] = {"material", "density", K_POS, 1},
   [MODULUS] = {"material", "modulus", K_POS, 1},
   [INITIAL_STRESS] = {"material", "initial_stress", K_REAL, 0},
@@ -189,8 +190,7 @@ static void set_key(scene *sc, int line, key_id id, const char *value)
   case K_NONNEG:
   case K_REAL:
     if (!cli_parse_double(value, &x))
-      key_error(sc, line, k->section, k->name, value,
-                "not a number; expected a finite decimal number");
+      key_error(sc, line, k->section, k->name, value, "%s", cli_number_problem(value));
     if (k->type == K_POS && !(x > 0.0))
       key_error(sc, line, k->section, k->name, value, "must be > 0");
     if (k->type == K_NONNEG && !(x >= 0.0))
@@ -232,6 +232,7 @@ static void set_key(scene *sc, int line, key_id id, const char *value)
     sc->ny = (int)l;
     break;
   case LENGTH_Y: sc->ly = x; break;
+  case MAX_ENTRIES: sc->max_entries = x; break;
   case PHYSICS:
     if (!strcmp(value, "antiplane"))
       sc->physics = MFS_PHYS_SCALAR;
@@ -490,6 +491,7 @@ static void defaults(scene *sc, const char *path)
   sc->scheme = MFS_SCHEME_LEAPFROG;
   sc->every = 1;
   sc->max_steps = 100000000; /* 10^8: a limit on the work, raised by [time] max_steps */
+  sc->max_entries = CLI_MAX_ENTRIES; /* the plan's size, raised by [model] max_entries */
   sc->mode = 1.0;
   sc->pulse_alpha = 1.0;
   sc->yield_stress = INFINITY;

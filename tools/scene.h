@@ -48,6 +48,7 @@ typedef struct {
   double end, dt, safety;
   int have_dt, force;
   long max_steps;          /* refuse a run of more steps (default 10^8) */
+  double max_entries;      /* refuse a plan of more neighbour entries ([model] max_entries) */
   mfs_scheme scheme;
   int tsph;                /* scheme = tsph given */
   mfs_tsph_scheme tscheme; /* stress_velocity: tsph | euler | rk2 | rk4 */

@@ -783,19 +783,22 @@ done:
   return st;
 }
 
-int mfs_eig_is_null(const mfs_pencil *P, const double *r, double lambda_max, double tol)
+mfs_status mfs_eig_is_null(const mfs_pencil *P, const double *r, double lambda_max, double tol,
+                           int *is_null)
 {
   size_t n = P->K->nrow;
   double *a = malloc(n * sizeof *a), *b = malloc(n * sizeof *b);
-  int res = 0;
+  mfs_status st = MFS_ENOMEM;
+  *is_null = 0;
   if (a && b) {
     matvec(P->K, r, a);
     mass_apply(P, r, b);
-    res = norm2(n, a) <= tol * lambda_max * norm2(n, b);
+    *is_null = norm2(n, a) <= tol * lambda_max * norm2(n, b);
+    st = MFS_OK;
   }
   free(a);
   free(b);
-  return res;
+  return st;
 }
 
 /* ------------------------------------------------------------------ */

@@ -118,10 +118,11 @@ mfs_status mfs_eig_zero_modes(const mfs_pencil *P, double lambda_max, const mfs_
                        const mfs_eig_opts *opts, mfs_zero_modes *out, mfs_eig_info *info);
 
 /* Whether the field r (length n) is a zero-energy mode of the pencil:
- * ||K r||_2 <= tol * lambda_max * ||M r||_2.  Used to recognize rigid-body
- * modes (K times a rigid mode vanishes for shape functions that reproduce
- * the rigid fields). */
-int mfs_eig_is_null(const mfs_pencil *P, const double *r, double lambda_max, double tol);
+ * *is_null = ||K r||_2 <= tol * lambda_max * ||M r||_2.  Used to recognize
+ * rigid-body modes (K times a rigid mode vanishes for shape functions that
+ * reproduce the rigid fields).  MFS_OK or MFS_ENOMEM (then *is_null = 0). */
+mfs_status mfs_eig_is_null(const mfs_pencil *P, const double *r, double lambda_max, double tol,
+                           int *is_null);
 
 /* The order of the largest problem mfs_eig_dense accepts. */
 #define MFS_EIG_DENSE_MAX 2000

@@ -1,5 +1,6 @@
 #include "mfs_particles.h"
 
+#include <gsl/gsl_errno.h>
 #include <gsl/gsl_rng.h>
 #include <math.h>
 #include <stdlib.h>
@@ -154,7 +155,9 @@ static int check_spec(const mfs_lattice_spec *s)
 
 static int perturb(mfs_particles *p, double frac, unsigned long seed)
 {
+  gsl_error_handler_t *handler = gsl_set_error_handler_off(); /* GSL's aborts */
   gsl_rng *rng = gsl_rng_alloc(gsl_rng_mt19937);
+  gsl_set_error_handler(handler);
   if (!rng)
     return MFS_ENOMEM;
   gsl_rng_set(rng, seed);

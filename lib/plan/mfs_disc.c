@@ -200,3 +200,32 @@ mfs_status mfs_disc_periodic_box(const mfs_disc *d, int nx, int ny, mfs_particle
                          .cells = d->quadrature->cells};
   return build(d, &ls, p, q);
 }
+
+double mfs_disc_plan_entries(const mfs_disc *d, double n, double *points)
+{
+  const mfs_quad_type *t = d->quadrature;
+  int dim = d->dim, tri = dim == 2 && (t->cells != MFS_CELLS_QUAD ||
+                                       d->source.lattice == MFS_LATTICE_HEX);
+  double cells = dim == 1 ? 1.0 : (tri ? 2.0 : 1.0); /* background cells per particle */
+  double per = t->node_share > 0.0 ? 1.0 : 0.0;      /* quadrature points per particle */
+  if (t->centres)
+    per += cells;
+  if (t->gauss_n > 0)
+    per += cells * (dim == 1 ? t->gauss_n : (tri && t->gauss_n == 1 ? 1 : t->gauss_n * t->gauss_n));
+  /* neighbours: the particles within a = D dx, area (length) per particle */
+  double D = d->dilation, nb;
+  if (dim == 1) {
+    nb = 2.0 * D + 1.0;
+  } else {
+    double gamma = d->source.gamma > 0.0 ? d->source.gamma : 1.0;
+    double cell = d->source.lattice == MFS_LATTICE_HEX ? sqrt(3.0) / 2.0 : gamma;
+    if (!mfs_disc_infinite(d) && d->source.nx > 1 && d->source.ny > 1)
+      cell = mfs_disc_dy(d) / mfs_disc_dx(d);
+    nb = M_PI * D * D / cell + 1.0;
+  }
+  if (nb > n)
+    nb = n; /* a support wider than the body holds every particle */
+  if (points)
+    *points = n * per;
+  return n * per * nb;
+}

@@ -95,6 +95,13 @@ double mfs_disc_support(const mfs_disc *d);
 /* The rcond threshold in use (rcond_min, or 1e-12 for 0). */
 double mfs_disc_rcond(const mfs_disc *d);
 
+/* An estimate of the size of a plan of d on n particles (a lattice of the
+ * descriptor's kind, any box): *points quadrature points (may be NULL) and
+ * the returned count of neighbour-list entries, within a few tens of per
+ * cent; for limits on the work before anything is built.  In doubles: no
+ * overflow for absurd inputs. */
+double mfs_disc_plan_entries(const mfs_disc *d, double n, double *points);
+
 /* The particles and quadrature points of a finite source (the lattice of
  * the box, cut as the rule needs).  MFS_OK, the statuses of mfs_disc_check
  * (MFS_EINVAL also for an infinite source), MFS_ENOMEM; *p and *q are NULL
