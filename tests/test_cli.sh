@@ -124,6 +124,8 @@ bad_cmd dispersion --kappa --kappa 2e6
 bad_input --gamma --dim 2 --gamma 1e7
 bad_cmd eigs --max-entries --nodes 100000 --dilation 3000
 bad_cmd eigs --max-entries --nodes 1000 --max-entries 100
+bad_cmd eigs --nodes --nodes --periodic
+bad_cmd eigs --tol --tol
 
 # a numerical failure (ARPACK stopped after one iteration): exit 1, no file
 mkdir -p "$tmp/res"

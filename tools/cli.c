@@ -349,8 +349,12 @@ void cli_parse(int argc, char **argv, const char *usage, const char *about, cli_
       if (val)
         cli_die(2, "%s: a flag takes no value (got '%s'); give %s alone", name, val, name);
     } else if (!val) {
-      if (i + 1 >= argc)
-        cli_die(2, "%s: missing value (%s)", name, o->arg ? o->arg : "VALUE");
+      const char *next = i + 1 < argc ? argv[i + 1] : NULL;
+      /* the next word is an option, not a value ("-1" and "-.5" are values) */
+      if (!next || (next[0] == '-' && next[1] != '\0' && next[1] != '.' &&
+                    !(next[1] >= '0' && next[1] <= '9')))
+        cli_die(2, "%s: missing value (%s)%s%s", name, o->arg ? o->arg : "VALUE",
+                next ? " before " : "", next ? next : "");
       val = argv[++i];
     }
     if (g->seen[k] && o->type != CLI_TEXTS && o->type != CLI_REALS)

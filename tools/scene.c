@@ -675,6 +675,9 @@ void scene_finish(scene *sc)
   if (sc->have_dt && values[SAFETY][0])
     scene_key_error(sc, "time", "safety", "give either dt or safety, not both");
   check_pulse_center(sc, "pulse_center", sc->pulse_center, sp->disc.source.lx);
+  if (!(sc->perturbation < 0.5))
+    scene_key_error(sc, "initial", "perturbation",
+                    "must be < 0.5 (a fraction of the spacing dX; particles keep their order)");
   int uses_v_err = 0;
   for (int p = 0; p < sc->nprobes; p++)
     uses_v_err |= sc->probe[p] == PROBE_V_ERR;
