@@ -15,6 +15,31 @@ const char *cli_command = "";
 static cli_out *current_out = NULL;
 static void remove_pending(void);
 
+void (*cli_die_hook)(int code) = NULL;
+
+/* what cli_die undoes before it leaves, most recent first */
+#define CLI_MAX_ON_DIE 8
+static struct {
+  void (*fn)(void *);
+  void *arg;
+} on_die[CLI_MAX_ON_DIE];
+static int n_on_die = 0;
+
+void cli_on_die(void (*fn)(void *), void *arg)
+{
+  if (n_on_die == CLI_MAX_ON_DIE)
+    cli_die(1, "internal error: more than %d pending clean-ups", CLI_MAX_ON_DIE);
+  on_die[n_on_die].fn = fn;
+  on_die[n_on_die].arg = arg;
+  n_on_die++;
+}
+
+void cli_on_die_pop(void)
+{
+  if (n_on_die > 0)
+    n_on_die--;
+}
+
 _Noreturn void cli_die(int code, const char *fmt, ...)
 {
   if (current_out)
@@ -26,6 +51,13 @@ _Noreturn void cli_die(int code, const char *fmt, ...)
   vfprintf(stderr, fmt, ap);
   fputc('\n', stderr);
   va_end(ap);
+  /* after the message, which may quote what they free */
+  while (n_on_die > 0) {
+    n_on_die--;
+    on_die[n_on_die].fn(on_die[n_on_die].arg);
+  }
+  if (cli_die_hook)
+    cli_die_hook(code);
   exit(code);
 }
 
@@ -182,6 +214,8 @@ static void set_value(const cli_opt *o, void *base, const char *val)
       n += *c == ',';
     double *v = malloc(n * sizeof *v);
     char *copy = strdup(val);
+    cli_on_die(free, v);
+    cli_on_die(free, copy);
     if (!v || !copy)
       cli_die(1, "out of memory");
     size_t k = 0;
@@ -203,6 +237,8 @@ static void set_value(const cli_opt *o, void *base, const char *val)
         break;
       s = comma + 1;
     }
+    cli_on_die_pop();
+    cli_on_die_pop();
     free(copy);
     free(l->v);
     l->v = v;
@@ -315,6 +351,8 @@ void cli_parse(int argc, char **argv, const char *usage, const char *about, cli_
     const char *a = argv[i], *val = NULL;
     if (strcmp(a, "--help") == 0 || strcmp(a, "-h") == 0) {
       cli_print_help(stdout, usage, about, groups, ngroups);
+      if (cli_die_hook)
+        cli_die_hook(0);
       exit(0);
     }
     cli_group *g;

@@ -14,8 +14,20 @@
 /* The command being run, for messages ("stencil"). */
 extern const char *cli_command;
 
-/* Print "mfstab CMD: MESSAGE" on stderr and exit with code. */
+/* Print "mfstab CMD: MESSAGE" on stderr and exit with code, after the
+ * clean-ups registered with cli_on_die (most recent first) and the removal
+ * of a pending temporary output file. */
 _Noreturn void cli_die(int code, const char *fmt, ...);
+
+/* A clean-up for cli_die (at most 8 pending), and its removal once the
+ * step it guards is done. */
+void cli_on_die(void (*fn)(void *), void *arg);
+void cli_on_die_pop(void);
+
+/* Called by cli_die with the exit code instead of exit() when set; it must
+ * not return (the fuzz targets of tests/fuzz/ longjmp back to the fuzzer). */
+extern void (*cli_die_hook)(int code);
+
 
 /* Strict conversions: the whole string a finite decimal number (no hex, no
  * leading or trailing space, no inf/nan), an integer in [lo, hi]; 1 on

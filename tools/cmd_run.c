@@ -219,8 +219,8 @@ static void progress(int tty, long k, long nsteps, int *shown)
 
 /* ---- building the run ---- */
 
-/* The solver of the scene, through its interface. */
-static mfs_integrator build(scene *sc)
+/* The solver of the scene, through its interface (scene.h). */
+mfs_integrator scene_build(scene *sc)
 {
   mfs_integrator in = {.scheme = sc->scheme};
   mfs_status st;
@@ -370,7 +370,7 @@ int cmd_run(int argc, char **argv)
     scene_set(&sc, o.sets.v[i]);
   scene_finish(&sc);
 
-  mfs_integrator in = build(&sc);
+  mfs_integrator in = scene_build(&sc);
   choose_dt(&sc, &in);
   const mfs_integrator_type *T = in.type;
   const mfs_source *src = &sc.spec.disc.source;

@@ -501,20 +501,23 @@ static void defaults(scene *sc, const char *path)
   sc->fixed_edges = 1;
 }
 
+static void close_file(void *f) { fclose(f); }
+
 void scene_load(scene *sc, const char *path)
 {
   defaults(sc, path);
   parse_ctx c = {sc, 0, fopen(path, "r")};
   if (!c.f)
     cli_die(2, "%s: cannot open the scene file (%s)", path, strerror(errno));
+  cli_on_die(close_file, c.f);
   struct stat st;
   if (fstat(fileno(c.f), &st) == 0 && !S_ISREG(st.st_mode) && !S_ISFIFO(st.st_mode) &&
       !S_ISCHR(st.st_mode)) {
-    fclose(c.f);
     cli_die(2, "%s: %s; expected a scene file", path,
             S_ISDIR(st.st_mode) ? "is a directory" : "not a regular file");
   }
   int r = ini_parse_stream(reader, &c, handler, &c);
+  cli_on_die_pop();
   fclose(c.f);
   if (r > 0)
     cli_die(2, "%s:%d: syntax error; expected [section] or key = value", path, r);

@@ -8,6 +8,7 @@
 #define MFSTAB_SCENE_H
 
 #include "mfstab.h"
+#include "mfs_integrator.h"
 #include "mfs_solver.h"
 #include "mfs_tsph.h"
 
@@ -86,6 +87,11 @@ mfs_tsph_spec scene_tsph_spec(const scene *sc);
 mfs_model_spec scene_model_spec(const scene *sc);
 
 /* Read the file (exit 2 on any error). */
+/* The solver of a finished scene, through the integrator interface; dies
+ * (one line, exit 2 or 1) when it cannot be built or the plan would exceed
+ * [model] max_entries.  Defined in cmd_run.c. */
+mfs_integrator scene_build(scene *sc);
+
 void scene_load(scene *sc, const char *path);
 /* Apply "section.key=value" from the command line (exit 2 on error). */
 void scene_set(scene *sc, const char *assignment);

@@ -1,0 +1,127 @@
+/* libFuzzer target: the option parser (tools/cli.c) with the shared
+ * discretization and physics options and options of every other kind (lists
+ * of numbers, integers, flags, a positional argument), then the descriptor
+ * built from them (cli_disc_build, mfs_disc_check) and, when the work is
+ * small, the stencil of the rule (mfs_stencil), checked finite.
+ *
+ * The input is the command line, one argument per line (at most 32).  A
+ * refusal (cli_die) returns to the fuzzer through cli_die_hook; a crash, a
+ * sanitizer report or a leak is a finding. */
+#include <math.h>
+#include <setjmp.h>
+#include <stdint.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "cli.h"
+#include "mfstab.h"
+
+static jmp_buf back;
+
+static void die_hook(int code)
+{
+  longjmp(back, code ? code : 1);
+}
+
+int LLVMFuzzerInitialize(int *argc, char ***argv)
+{
+  (void)argc, (void)argv;
+  cli_command = "fuzz";
+  cli_die_hook = die_hook;
+  return 0;
+}
+
+typedef struct {
+  cli_list stress, kappa;
+  double tol;
+  long points;
+  int flag;
+  const char *text;
+} extra_opts;
+
+#define OFF(f) offsetof(extra_opts, f)
+static const cli_opt extra[] = {
+  {.name = "--stress", .type = CLI_REALS, .arg = "S", .help = "", .offset = OFF(stress),
+   .bounds = CLI_GE | CLI_LE, .lo = -1e6, .hi = 1e6},
+  {.name = "--kappa", .type = CLI_REALS, .arg = "K", .help = "", .offset = OFF(kappa),
+   .bounds = CLI_GE | CLI_LE, .lo = 0.0, .hi = 1e6},
+  {.name = "--tol", .type = CLI_REAL, .arg = "T", .help = "", .offset = OFF(tol),
+   .bounds = CLI_GT | CLI_LE, .lo = 0.0, .hi = 1.0},
+  {.name = "--points", .type = CLI_INT, .arg = "N", .help = "", .offset = OFF(points),
+   .bounds = CLI_GE | CLI_LE, .lo = 2, .hi = 100000},
+  {.name = "--flag", .type = CLI_FLAG, .help = "", .offset = OFF(flag)},
+  {.name = NULL, .type = CLI_TEXT, .arg = "FILE", .help = "", .offset = OFF(text)},
+  {.type = CLI_END},
+};
+
+#define MAX_ARGS 32
+
+static cli_disc o;
+static extra_opts e;
+
+static void free_lists(void)
+{
+  free(o.dilation.v);
+  free(e.stress.v);
+  free(e.kappa.v);
+  o.dilation.v = e.stress.v = e.kappa.v = NULL;
+}
+
+static void small_work(const mfs_disc *d)
+{
+  double side = 4.0 * ceil(2.0 * d->dilation) + 4.0; /* the periodic box of mfs_stencil */
+  if (mfs_disc_plan_entries(d, d->dim == 1 ? side : side * side, NULL) > 2e4)
+    return;
+  mfs_stencil_entry *s = NULL;
+  size_t n = 0, bad = 0;
+  if (mfs_stencil(d, &s, &n, &bad) == MFS_OK) {
+    double sum = 0.0;
+    for (size_t k = 0; k < n; k++)
+      sum += s[k].K;
+    if (!isfinite(sum))
+      abort(); /* a stencil that was computed is finite */
+  }
+  free(s);
+}
+
+int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
+{
+  if (size > 4096)
+    return 0;
+  char *buf = malloc(size + 1);
+  if (!buf)
+    return 0;
+  memcpy(buf, data, size);
+  buf[size] = '\0';
+  char *argv[MAX_ARGS + 1] = {"fuzz"};
+  int argc = 1;
+  for (char *s = buf; argc < MAX_ARGS;) {
+    char *nl = strchr(s, '\n');
+    if (nl)
+      *nl = '\0';
+    argv[argc++] = s;
+    if (!nl)
+      break;
+    s = nl + 1;
+  }
+  argv[argc] = NULL;
+  static unsigned char seen_disc[CLI_DISC_NOPTS], seen_phys[CLI_PHYSICS_NOPTS], seen_extra[8];
+  memset(seen_disc, 0, sizeof seen_disc);
+  memset(seen_phys, 0, sizeof seen_phys);
+  memset(seen_extra, 0, sizeof seen_extra);
+  cli_disc_defaults(&o);
+  memset(&e, 0, sizeof e);
+  cli_group groups[] = {{cli_disc_opts, &o, seen_disc},
+                        {cli_physics_opts, &o, seen_phys},
+                        {extra, &e, seen_extra}};
+  if (setjmp(back) == 0) {
+    cli_parse(argc, argv, "usage: fuzz [OPTIONS]", "", groups, 3);
+    mfs_disc d = cli_disc_build(&o, seen_disc);
+    const char *field = NULL;
+    if (mfs_disc_check(&d, &field) == MFS_OK)
+      small_work(&d);
+  }
+  free_lists();
+  free(buf);
+  return 0;
+}
