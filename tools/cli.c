@@ -836,6 +836,21 @@ void cli_fmt(char *buf, size_t len, double v)
     snprintf(buf, len, "%.16g", v);
 }
 
+void cli_put_text(FILE *f, const char *s)
+{
+  if (!strpbrk(s, ",\"\r\n")) {
+    fputs(s, f);
+    return;
+  }
+  fputc('"', f); /* RFC 4180: quoted, a quote doubled */
+  for (; *s; s++) {
+    if (*s == '"')
+      fputc('"', f);
+    fputc(*s, f);
+  }
+  fputc('"', f);
+}
+
 void cli_put_num(FILE *f, double v, const char *what)
 {
   if (isnan(v))

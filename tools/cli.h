@@ -172,6 +172,10 @@ void cli_out_abort(cli_out *o);   /* close and remove the temporary file */
 /* Format a double with 16 significant digits, "0" for zero. */
 void cli_fmt(char *buf, size_t len, double v);
 
+/* One CSV text field: as is, or quoted per RFC 4180 when it holds a comma,
+ * a quote or a line break (quotes doubled). */
+void cli_put_text(FILE *f, const char *s);
+
 /* One CSV number field: the value, or an empty field for NAN (undefined);
  * dies (exit 1, one line naming `what`) rather than write an infinity. */
 void cli_put_num(FILE *f, double v, const char *what);

@@ -148,7 +148,8 @@ static void table2(void)
   for (int i = 0; i < 3; i++) {
     double where;
     double v = max_omega2(t[i].quad, t[i].frame, &mfs_kernel_quartic, 1.5, &where);
-    fprintf(o.f, "%s,%g,%.16g,%g\n", t[i].name, t[i].paper, v, where);
+    cli_put_text(o.f, t[i].name);
+    fprintf(o.f, ",%g,%.16g,%g\n", t[i].paper, v, where);
     char a[80], p[16];
     snprintf(a, sizeof a, "Table II %s", t[i].name);
     snprintf(p, sizeof p, "%.1f", t[i].paper);
