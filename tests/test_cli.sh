@@ -266,6 +266,16 @@ for f in table1_nodal table1_gauss2 table1_gauss1 table1_stress-quad table2 fig0
   check "mfstab reproduce: $f.csv missing or empty" test -s "$tmp/repro/$f.csv"
 done
 check "mfstab reproduce: NaN or inf in a CSV" bash -c "! grep -qiE 'nan|inf' $tmp/repro/*.csv"
+# RFC 4180: every row of every CSV has the header's field count, quotes respected
+if [ -x /usr/bin/python3 ]; then
+  bad_csv=$(/usr/bin/python3 -c '
+import csv, sys
+for p in sys.argv[1:]:
+    rows = list(csv.reader(open(p, newline="")))
+    if any(len(r) != len(rows[0]) for r in rows):
+        print(p.rsplit("/", 1)[-1], end=" ")' "$tmp/repro"/*.csv)
+  check "mfstab reproduce: CSV rows whose field count is not the header's: $bad_csv" test -z "$bad_csv"
+fi
 rm -rf "$tmp/repro"
 
 echo "test_cli: $pass passed, $fail failed"
