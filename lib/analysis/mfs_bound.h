@@ -31,7 +31,7 @@
  * Closed forms (eqs 134-137, 145-146).  On a uniform lattice without
  * boundary, phi_I = dx W_I (eq. 134), so in 1D lambda^Q = c^2 dx sum_I
  * W'_I^2 / W_I.  With W(r) = (norm / h) w(r / h) (h = a = D dx the support
- * radius, norm = 2 for the cubic spline of DESIGN.md), W'^2/W = (norm / h^3)
+ * radius, norm = 2 for the cubic spline of docs/user-guide.md), W'^2/W = (norm / h^3)
  * w'(z)^2 / w(z).  For the cubic spline on z <= 1/2, w = (2/3)(1 - 6 z^2 +
  * 6 z^3), and the algebra gives W'^2/W = (48 / h^3) g(z) with
  *   g(z) = z^2 (2 - 3 z)^2 / (1 - 6 z^2 + 6 z^3),  max g = 0.2587 at z = 0.4627:

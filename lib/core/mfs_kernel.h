@@ -1,7 +1,7 @@
 /* Radial kernels (weight functions) of compact support.
  *
  * A kernel is a function w(z) of z = r/a on [0, 1], a = D*dx the support
- * radius (paper 003 eq. 39 with h = a; DESIGN.md "Dilation").  The
+ * radius (paper 003 eq. 39 with h = a; docs/user-guide.md "Conventions").  The
  * normalized kernel in dimension d is W(r) = norm[d-1] / a^d * w(r/a), so
  * that the integral of W over the ball of radius a is 1.  MLS and Shepard
  * functions do not depend on the normalization; SPH does. */
@@ -34,7 +34,7 @@ typedef struct {
   int id;         /* MFS_KERNEL_ID_<name> of a built-in kernel, 0 for another */
 } mfs_kernel_type;
 
-extern const mfs_kernel_type mfs_kernel_cubic;     /* cubic B-spline (DESIGN.md) */
+extern const mfs_kernel_type mfs_kernel_cubic;     /* cubic B-spline (docs/user-guide.md, Conventions) */
 extern const mfs_kernel_type mfs_kernel_quartic;   /* 1 - 6z^2 + 8z^3 - 3z^4 */
 extern const mfs_kernel_type mfs_kernel_wendland2; /* Wendland C2: (1-z)^4 (1+4z) */
 extern const mfs_kernel_type mfs_kernel_quintic;   /* quintic spline, q = 3z */

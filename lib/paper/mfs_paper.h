@@ -14,7 +14,7 @@ extern "C" {
  * combinations).  Columns: nodal, gauss2 (2x2 cells), gauss1 (one-point
  * cells), stress-quad.  0 marks a blank entry.  The -0.9193e-5 at (3, 2)
  * stands under the one-point column in the extracted text; it belongs to the
- * 2x2 column (DESIGN.md). */
+ * 2x2 column (docs/user-guide.md, Conventions). */
 typedef struct {
   int j, k;
   double K[4];

@@ -9,7 +9,7 @@
  *               lattice particles on [0, lx] x [0, ly], periodic or not
  *               (dx = lx/(nx-1), or lx/nx when periodic)
  *   kernel      the weight function (mfs_kernel.h), support radius
- *               a = dilation * dx (DESIGN.md "Dilation")
+ *               a = dilation * dx (docs/user-guide.md "Conventions")
  *   shape       shape functions (mfs_shape.h)
  *   quadrature  the rule (mfs_quad.h)
  *   frame       Lagrangian or Eulerian kernel (paper 003 section 3.4)
