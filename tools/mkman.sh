@@ -23,5 +23,5 @@ esc() { sed -e 's/\\/\\e/g' -e "s/^\\([.']\\)/\\\\\\&\\1/"; }
   done
   printf '.SH EXIT STATUS\n.TP\n0\nsuccess\n.TP\n1\na numerical failure (a singular moment matrix, ARPACK without convergence, a non-finite result, out of memory, an I/O error); one line on standard error\n.TP\n2\nbad input (an unknown option, a value out of its range, a scene key missing or in conflict, work over the limit); one line on standard error naming the parameter, the value and what is allowed; no output file\n'
   printf '.SH FILES\nThe scene files of \\fBmfstab run\\fR are INI files (see \\fBmfstab help run\\fR); examples are in analysis/scenes/ of the source tree.\n'
-  printf '.SH SEE ALSO\nThe commands with the papers'"'"' equation numbers: docs/commands.md; a user guide: docs/user-guide.md; the library: docs/api.md and the headers in include/mfstab/ (pkg-config mfstab).\n'
+  printf '.SH SEE ALSO\nThe commands with the papers'"'"' equation numbers: docs/commands.md; a user guide: docs/user-guide.md; the library: docs/api.md of the source tree, and the headers in PREFIX/include/mfstab/ (pkg-config mfstab).\n'
 } >"$out"
