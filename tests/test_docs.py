@@ -16,7 +16,8 @@ written resolve), under bash with -e and pipefail:
   * any other block must exit 0.
 
 Every relative link, and every path of the tree named in backquotes
-(`docs/errata.md`, `lib/core/mfs_kernel.h`), must exist.
+(`docs/errata.md`, `lib/core/mfs_kernel.h`), must exist; every library name
+in backquotes (`mfs_eig_max()`) must be declared in a header of lib/.
 
 A block is skipped when the line before it is `<!-- not run -->` or when it
 is a synopsis (holds `[options]`).  One line per failed block; the last line
@@ -87,6 +88,11 @@ def main():
     files = sys.argv[3:] or [os.path.join(src, "README.md")] + sorted(
         os.path.join(src, "docs", f) for f in os.listdir(os.path.join(src, "docs")) if f.endswith(".md"))
     env = dict(os.environ, PATH=bindir + os.pathsep + os.environ.get("PATH", ""))
+    headers = set()
+    for root, _, fs in os.walk(os.path.join(src, "lib")):
+        for f in fs:
+            if f.endswith(".h") or f == "meson.build":
+                headers |= set(re.findall(r"\bmfs_[a-z0-9_]+", open(os.path.join(root, f)).read()))
     passed = failed = 0
     for path in files:
         rel = os.path.relpath(path, src)
@@ -128,6 +134,10 @@ def main():
         targets = [(m, os.path.dirname(path)) for m in re.findall(r"\]\(([^)#:\s]+)[^)]*\)", text)]
         targets += [(m, src) for m in re.findall(r"`((?:docs|lib|tools|tests|analysis|scripts|examples|notebooks)/[\w./-]+\.\w+)`", text)]
         missing = sorted({t for t, base in targets if not os.path.exists(os.path.join(base, t))})
+        # every library name in backquotes (`mfs_eig_max()`, `mfs_disc`) is declared in a header
+        names = set(re.findall(r"`[^`]*?\b(mfs_[a-z0-9_]+)", text))
+        missing += sorted(n + " (not in lib/)" for n in names if n not in headers and
+                          not (n.endswith("_") and any(h.startswith(n) for h in headers)))
         if missing:
             failed += 1
             print("FAIL: %s: links to files that do not exist: %s" % (rel, ", ".join(missing)))
