@@ -46,9 +46,15 @@ typedef struct {
 typedef int (*mfs_shape_dpos_fn)(const mfs_shape_ctx *c, int nn, const double *d,
                                  const double *v, int K, double *dphi, double *dgrad);
 
+/* The fused 1D gather and evaluation (mfs_shape_type.gather_1d): the
+ * candidates cand[0..nc) of the particles xp within a of x, their indices
+ * to idx[0..*nn) and their values and derivatives to out (2 per neighbour);
+ * with field (a nodal field, indexed like xp) not NULL also *grad = sum_J
+ * phi_J'(x) field[idx_J], the field's gradient at x, in the same pass. */
 typedef int (*mfs_shape_gather_1d_fn)(const mfs_shape_ctx *c, const mfs_box *box, double x,
                                       const double *xp, const int *cand, size_t nc, int *idx,
-                                      double *out, double *work, int *nn, double *rcond);
+                                      double *out, double *work, int *nn, double *rcond,
+                                      const double *field, double *grad);
 
 typedef struct {
   const char *name;

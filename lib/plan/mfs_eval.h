@@ -73,13 +73,38 @@ static inline mfs_status mfs_eval_point(mfs_eval *ev, const double *x, const dou
 {
   if (ev->fast && nc <= ev->cap) { /* the same values (ev->d, ev->v not kept) */
     double rc;
-    int st = ev->fast(&ev->ctx, ev->box, *x, xp, cand, nc, idx, out, ev->work, nn, &rc);
+    int st = ev->fast(&ev->ctx, ev->box, *x, xp, cand, nc, idx, out, ev->work, nn, &rc, NULL,
+                      NULL);
     ev->nn = *nn;
     if (rcond)
       *rcond = rc;
     return (mfs_status)st;
   }
   return mfs_eval_point_general(ev, x, xp, vol, cand, nc, self, idx, out, nn, rcond);
+}
+
+/* mfs_eval_point (order 1, 1D: ncomp = 2) and the gradient of the nodal
+ * field u (indexed like xp) at x, *grad = sum_J phi_J'(x) u[idx_J], in the
+ * same pass where the fast path is in use. */
+static inline mfs_status mfs_eval_point_grad(mfs_eval *ev, const double *x, const double *xp,
+                                             const double *vol, const int *cand, size_t nc,
+                                             int self, int *idx, double *out, int *nn,
+                                             const double *u, double *grad)
+{
+  if (ev->fast && nc <= ev->cap) {
+    double rc;
+    int st = ev->fast(&ev->ctx, ev->box, *x, xp, cand, nc, idx, out, ev->work, nn, &rc, u, grad);
+    ev->nn = *nn;
+    return (mfs_status)st;
+  }
+  mfs_status st = mfs_eval_point_general(ev, x, xp, vol, cand, nc, self, idx, out, nn, NULL);
+  if (st == MFS_OK) {
+    double g = 0.0;
+    for (int k = 0; k < *nn; k++)
+      g += out[ev->ncomp * k + 1] * u[idx[k]];
+    *grad = g;
+  }
+  return st;
 }
 
 /* The gather alone: keeps the candidates within a (indices to idx, offsets

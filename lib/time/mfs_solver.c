@@ -7,6 +7,7 @@
 
 #include "mfs_bound.h"
 #include "mfs_eval.h"
+#include "mfs_mls1d.h"
 #include "mfs_neighbor.h"
 #include "mfs_plan.h"
 #include "mfs_status.h"
@@ -158,8 +159,12 @@ static int eulerian_positions(mfs_solver *s, const double *u)
 
 /* Eulerian internal force, eqs 64-68: shape functions at the current
  * quadrature points (the point evaluator on the candidates), V_Q = w_Q F_Q,
- * sigma = P; for sph the volumes are the reference volumes V^0 (see header). */
-static int force_eulerian(mfs_solver *s, const double *u, double *f)
+ * sigma = P; for sph the volumes are the reference volumes V^0 (see header).
+ * One body: with kw NULL through the evaluator (any shape), with kw a
+ * kernel's inline formula the fused 1D MLS gather inlined (mfs_mls1d.h), one
+ * instantiation per built-in kernel below. */
+static inline int force_eulerian_body(mfs_solver *s, const double *u, double *f,
+                                      mfs_mls1d_kernel_fn kw)
 {
   mfs_solver_work *w = s->w;
   const mfs_material *mat = &s->spec.disc.material;
@@ -171,14 +176,18 @@ static int force_eulerian(mfs_solver *s, const double *u, double *f)
   const mfs_nlist *cl = w->cand;
   for (size_t Q = 0; Q < s->nq; Q++) {
     int nn;
-    size_t e0 = cl->ptr[Q];
-    st = mfs_eval_point(&w->ev, w->xq + Q, w->x, w->p->vol, cl->idx + e0, cl->ptr[Q + 1] - e0,
-                        w->q->node[Q], w->loc, w->out, &nn, NULL);
+    size_t e0 = cl->ptr[Q], nc = cl->ptr[Q + 1] - e0;
+    double dudx = 0.0; /* eq. 68, in the pass that evaluates the shape functions */
+    if (kw) {
+      double rc;
+      st = mfs_mls1d_gather(kw, &w->ev.ctx, w->ev.box, w->xq[Q], w->x, cl->idx + e0, nc, w->loc,
+                            w->out, w->ev.work, &nn, &rc, u, &dudx);
+    } else {
+      st = mfs_eval_point_grad(&w->ev, w->xq + Q, w->x, w->p->vol, cl->idx + e0, nc,
+                               w->q->node[Q], w->loc, w->out, &nn, u, &dudx);
+    }
     if (st != MFS_OK)
       return st;
-    double dudx = 0.0; /* eq. 68 */
-    for (int k = 0; k < nn; k++)
-      dudx += w->out[2 * k + 1] * u[w->loc[k]];
     if (!(dudx < 1.0))
       return MFS_EDOMAIN;
     double F = 1.0 / (1.0 - dudx);
@@ -192,10 +201,43 @@ static int force_eulerian(mfs_solver *s, const double *u, double *f)
   return MFS_OK;
 }
 
+static int force_eulerian(mfs_solver *s, const double *u, double *f)
+{
+  return force_eulerian_body(s, u, f, NULL);
+}
+
+#define MFS_X_FORCE(name)                                                                 \
+  static int force_eulerian_mls1d_##name(mfs_solver *s, const double *u, double *f)      \
+  {                                                                                       \
+    return force_eulerian_body(s, u, f, mfs_kernel_##name##_w);                           \
+  }
+MFS_KERNEL_LIST(MFS_X_FORCE)
+#undef MFS_X_FORCE
+
+static int (*const force_mls1d[MFS_KERNEL_NIDS])(mfs_solver *, const double *, double *) = {
+#define MFS_X_ENTRY(name) [MFS_KERNEL_ID_##name] = force_eulerian_mls1d_##name,
+  MFS_KERNEL_LIST(MFS_X_ENTRY)
+#undef MFS_X_ENTRY
+};
+
+/* The Eulerian force of the solver: the fused MLS loop of its kernel where
+ * the evaluator's fast path is in use (1D MLS, a built-in kernel), else the
+ * evaluator's. */
+static int (*eulerian_force_of(const mfs_solver *s))(mfs_solver *, const double *, double *)
+{
+  const mfs_disc *d = &s->spec.disc;
+  int id = d->kernel->id;
+  /* the search keeps every candidate list within the evaluator's room */
+  if (s->w->ev.fast && d->shape == &mfs_shape_mls && id > 0 && id < MFS_KERNEL_NIDS &&
+      force_mls1d[id])
+    return force_mls1d[id];
+  return force_eulerian;
+}
+
 static int force(mfs_solver *s, const double *u, double *f)
 {
-  return s->spec.disc.frame == MFS_FRAME_EULERIAN ? force_eulerian(s, u, f)
-                                              : force_lagrangian(s, u, f);
+  return s->spec.disc.frame == MFS_FRAME_EULERIAN ? eulerian_force_of(s)(s, u, f)
+                                                  : force_lagrangian(s, u, f);
 }
 
 /* Acceleration at displacement u, time t: m a = f0 - f_int(u); zero at ends
