@@ -4,6 +4,7 @@
 
 /* core */
 #include "mfs_status.h"
+#include "mfs_alloc.h"
 #include "mfs_kernel.h"
 #include "mfs_lapack.h"
 #include "mfs_material.h"

@@ -26,6 +26,50 @@ static const struct {
 };
 enum { NCMDS = sizeof cmds / sizeof cmds[0] };
 
+/* Testing hooks (tests/test_alloc.sh), not for users: MFSTAB_ALLOC_FAIL=k
+ * makes the k-th allocation of the library and the program return NULL;
+ * MFSTAB_ALLOC_COUNT=FILE writes the number of allocations made to FILE at
+ * exit.  Through mfs_set_allocator (lib/core/mfs_alloc.h). */
+static long alloc_made, alloc_fail;
+static const char *alloc_count_path;
+
+static void *test_malloc(size_t n)
+{
+  return ++alloc_made == alloc_fail ? NULL : malloc(n);
+}
+
+static void *test_calloc(size_t c, size_t n)
+{
+  return ++alloc_made == alloc_fail ? NULL : calloc(c, n);
+}
+
+static void *test_realloc(void *p, size_t n)
+{
+  return ++alloc_made == alloc_fail ? NULL : realloc(p, n);
+}
+
+static void write_alloc_count(void)
+{
+  FILE *f = fopen(alloc_count_path, "w");
+  if (f) {
+    fprintf(f, "%ld\n", alloc_made);
+    fclose(f);
+  }
+}
+
+static void alloc_hooks(void)
+{
+  const char *k = getenv("MFSTAB_ALLOC_FAIL");
+  alloc_count_path = getenv("MFSTAB_ALLOC_COUNT");
+  if (!k && !alloc_count_path)
+    return;
+  alloc_fail = k ? atol(k) : 0;
+  static const mfs_allocator counting = {test_malloc, test_calloc, test_realloc, free};
+  mfs_set_allocator(&counting);
+  if (alloc_count_path)
+    atexit(write_alloc_count);
+}
+
 static void usage(FILE *f)
 {
   fputs("usage: mfstab COMMAND [options]    (mfstab COMMAND --help, or mfstab help COMMAND)\n"
@@ -56,6 +100,7 @@ static _Noreturn void unknown(const char *name)
 int main(int argc, char **argv)
 {
   gsl_set_error_handler_off();
+  alloc_hooks();
   if (argc < 2) {
     usage(stderr);
     return 2;
