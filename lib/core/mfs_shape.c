@@ -627,6 +627,162 @@ static int mls_dpos(const mfs_shape_ctx *c, int nn, const double *d, const doubl
   return mls_dpos_m(2, c, nn, d, K, dphi, dgrad);
 }
 
+mfs_status mfs_shape_dpos(const mfs_shape_type *t, const mfs_shape_ctx *c, int nn, const double *d,
+                          const double *v, int K, int l, double *dphi, double *dgrad)
+{
+  if (!t->dpos)
+    return MFS_ENOTSUP;
+  return t->dpos(c, nn, d, v, K, l, dphi, dgrad);
+}
+
+/* W, its gradient Wx and Hessian Wxx with respect to the evaluation point x,
+ * for the offset d = x_J - x (the kernel_values formulas for one neighbour). */
+static void kernel_one(const mfs_shape_ctx *c, const double *dj, double *W, double *Wx,
+                       double *Wxx)
+{
+  int dim = c->dim;
+  double r2 = 0.0;
+  for (int k = 0; k < dim; k++)
+    r2 += dj[k] * dj[k];
+  mfs_kernel_value kv = mfs_kernel_radial(c->kernel, dim, c->a, sqrt(r2));
+  double t = r2 > 0.0 ? (kv.d2W - kv.dW_r) / r2 : 0.0;
+  *W = kv.W;
+  for (int k = 0; k < dim; k++) {
+    Wx[k] = -kv.dW_r * dj[k];
+    for (int q = 0; q < dim; q++)
+      Wxx[k * dim + q] = (k == q ? kv.dW_r : 0.0) + t * dj[k] * dj[q];
+  }
+}
+
+/* sph, any dimension: phi_J = V_J W(x_J - x), only J = K moves:
+ * d phi_K / d x_K,l = -V_K W_x,l, d g_K,m / d x_K,l = -V_K W_xx,ml. */
+static int sph_dpos_dim(const mfs_shape_ctx *c, int nn, const double *d, const double *v, int K,
+                        int l, double *dphi, double *dgrad)
+{
+  int dim = c->dim;
+  if (nn < 1 || K < 0 || K >= nn || l < 0 || l >= dim || dim > MAXD)
+    return MFS_EINVAL;
+  for (int J = 0; J < nn; J++) {
+    dphi[J] = 0.0;
+    for (int m = 0; m < dim; m++)
+      dgrad[J * dim + m] = 0.0;
+  }
+  double W, Wx[MAXD], Wxx[MAXD * MAXD];
+  kernel_one(c, d + K * dim, &W, Wx, Wxx);
+  dphi[K] = -v[K] * Wx[l];
+  for (int m = 0; m < dim; m++)
+    dgrad[K * dim + m] = -v[K] * Wxx[m * dim + l];
+  return MFS_OK;
+}
+
+/* Shepard (m = 1) and linear MLS (m = 1 + dim), any dimension: the 1D dual
+ * numbers of mls_dpos_m with the basis p_J = [1, d_J / a], the dual unit on
+ * d_K,l: W~_J = -delta_JK W_x,l, (W_x,q)~ = -delta_JK W_xx,ql, p~_K = e_{1+l}/a;
+ * A = sum W p p^T, B_q = sum W_x,q p p^T, gamma = A^-1 e_0,
+ * gamma_q = A^-1 (e_{1+q}/a - B_q gamma), and their duals. */
+static int mls_dpos_dim_m(int m, const mfs_shape_ctx *c, int nn, const double *d, int K, int l,
+                          double *dphi, double *dgrad)
+{
+  const int dim = c->dim;
+  if (nn < 1 || K < 0 || K >= nn || l < 0 || l >= dim || dim > MAXD || m > MAXM)
+    return MFS_EINVAL;
+  const double ia = 1.0 / c->a;
+  double A[MAXM * MAXM] = {0}, At[MAXM * MAXM] = {0};
+  double B[MAXD][MAXM * MAXM] = {{0}}, Bt[MAXD][MAXM * MAXM] = {{0}};
+  for (int J = 0; J < nn; J++) {
+    double W, Wx[MAXD], Wxx[MAXD * MAXD], p[MAXM], pt[MAXM] = {0};
+    kernel_one(c, d + J * dim, &W, Wx, Wxx);
+    int e = J == K;
+    double Wt = e ? -Wx[l] : 0.0, Wxt[MAXD];
+    for (int q = 0; q < dim; q++)
+      Wxt[q] = e ? -Wxx[q * dim + l] : 0.0;
+    p[0] = 1.0;
+    for (int i = 1; i < m; i++)
+      p[i] = d[J * dim + i - 1] * ia;
+    if (e && m > 1)
+      pt[1 + l] = ia;
+    for (int i = 0; i < m; i++)
+      for (int j = 0; j < m; j++) {
+        double pp = p[i] * p[j], ppt = pt[i] * p[j] + p[i] * pt[j];
+        A[i * m + j] += W * pp;
+        At[i * m + j] += Wt * pp + W * ppt;
+        for (int q = 0; q < dim; q++) {
+          B[q][i * m + j] += Wx[q] * pp;
+          Bt[q][i * m + j] += Wxt[q] * pp + Wx[q] * ppt;
+        }
+      }
+  }
+  double L[MAXM * MAXM] = {0};
+  if (cholesky(m, A, L))
+    return MFS_ESINGULAR;
+  double g[MAXM] = {0}, gt[MAXM], gx[MAXD][MAXM], gxt[MAXD][MAXM];
+  g[0] = 1.0;
+  chol_solve(m, L, g);
+  for (int i = 0; i < m; i++) { /* gamma~ = -A^-1 A~ gamma */
+    double s = 0.0;
+    for (int j = 0; j < m; j++)
+      s -= At[i * m + j] * g[j];
+    gt[i] = s;
+  }
+  chol_solve(m, L, gt);
+  for (int q = 0; q < dim; q++) {
+    for (int i = 0; i < m; i++) { /* gamma_q = A^-1 (e_{1+q}/a - B_q gamma) */
+      double s = (m > 1 && i == q + 1) ? ia : 0.0;
+      for (int j = 0; j < m; j++)
+        s -= B[q][i * m + j] * g[j];
+      gx[q][i] = s;
+    }
+    chol_solve(m, L, gx[q]);
+    for (int i = 0; i < m; i++) { /* gamma_q~ = A^-1 (-A~ gamma_q - B_q~ gamma - B_q gamma~) */
+      double s = 0.0;
+      for (int j = 0; j < m; j++)
+        s -= At[i * m + j] * gx[q][j] + Bt[q][i * m + j] * g[j] + B[q][i * m + j] * gt[j];
+      gxt[q][i] = s;
+    }
+    chol_solve(m, L, gxt[q]);
+  }
+  for (int J = 0; J < nn; J++) {
+    double W, Wx[MAXD], Wxx[MAXD * MAXD], p[MAXM], pt[MAXM] = {0};
+    kernel_one(c, d + J * dim, &W, Wx, Wxx);
+    int e = J == K;
+    double Wt = e ? -Wx[l] : 0.0;
+    p[0] = 1.0;
+    for (int i = 1; i < m; i++)
+      p[i] = d[J * dim + i - 1] * ia;
+    if (e && m > 1)
+      pt[1 + l] = ia;
+    double gp = 0.0, gpt = 0.0;
+    for (int i = 0; i < m; i++) {
+      gp += g[i] * p[i];
+      gpt += gt[i] * p[i] + g[i] * pt[i];
+    }
+    dphi[J] = gpt * W + gp * Wt;
+    for (int q = 0; q < dim; q++) {
+      double gxp = 0.0, gxpt = 0.0, Wxt = e ? -Wxx[q * dim + l] : 0.0;
+      for (int i = 0; i < m; i++) {
+        gxp += gx[q][i] * p[i];
+        gxpt += gxt[q][i] * p[i] + gx[q][i] * pt[i];
+      }
+      dgrad[J * dim + q] = gxpt * W + gxp * Wt + gpt * Wx[q] + gp * Wxt;
+    }
+  }
+  return MFS_OK;
+}
+
+static int shepard_dpos_dim(const mfs_shape_ctx *c, int nn, const double *d, const double *v,
+                            int K, int l, double *dphi, double *dgrad)
+{
+  (void)v;
+  return mls_dpos_dim_m(1, c, nn, d, K, l, dphi, dgrad);
+}
+
+static int mls_dpos_dim(const mfs_shape_ctx *c, int nn, const double *d, const double *v, int K,
+                        int l, double *dphi, double *dgrad)
+{
+  (void)v;
+  return mls_dpos_dim_m(1 + c->dim, c, nn, d, K, l, dphi, dgrad);
+}
+
 static int sph_eval(const mfs_shape_ctx *c, int nn, const double *d, const double *v, int self,
                     int order, double *out, double *work, double *rcond)
 {
@@ -718,19 +874,22 @@ const mfs_shape_type mfs_shape_sph = {.name = "sph",
                                       .uses_volumes = 1,
                                       .gradient_is_derivative = 1,
                                       .eval = sph_eval,
-                                      .dpos_1d = sph_dpos};
+                                      .dpos_1d = sph_dpos,
+                                      .dpos = sph_dpos_dim};
 const mfs_shape_type mfs_shape_shepard = {.name = "shepard",
                                           .partition_of_unity = 1,
                                           .gradient_is_derivative = 1,
                                           .eval = shepard_eval,
-                                          .dpos_1d = shepard_dpos};
+                                          .dpos_1d = shepard_dpos,
+                                          .dpos = shepard_dpos_dim};
 const mfs_shape_type mfs_shape_mls = {.name = "mls",
                                       .partition_of_unity = 1,
                                       .linear_complete = 1,
                                       .gradient_is_derivative = 1,
                                       .eval = mls_eval,
                                       .dpos_1d = mls_dpos,
-                                      .gather_1d = mls_gather_1d};
+                                      .gather_1d = mls_gather_1d,
+                                      .dpos = mls_dpos_dim};
 const mfs_shape_type mfs_shape_kb = {.name = "kb", .partition_of_unity = 1, .eval = kb_eval};
 const mfs_shape_type mfs_shape_rl = {
   .name = "rl", .uses_volumes = 1, .partition_of_unity = 1, .eval = rl_eval};

@@ -46,6 +46,16 @@ typedef struct {
 typedef int (*mfs_shape_dpos_fn)(const mfs_shape_ctx *c, int nn, const double *d,
                                  const double *v, int K, double *dphi, double *dgrad);
 
+/* Position derivatives in any dimension (the consistent linearization of
+ * an Eulerian kernel in 2D): the derivatives of phi_J(x) and of its gradient
+ * g_J(x) with respect to the position of neighbour K along axis l
+ * (d[K*dim + l] = x_K,l - x_l moves), x and every other position fixed, for
+ * every J: dphi[J] = d phi_J / d x_K,l, dgrad[J*dim + m] = d g_J,m / d x_K,l.
+ * Exact (forward-mode dual numbers through the MLS formulas).  MFS_OK,
+ * MFS_EINVAL, MFS_ESINGULAR as eval. */
+typedef int (*mfs_shape_dpos_dim_fn)(const mfs_shape_ctx *c, int nn, const double *d,
+                                     const double *v, int K, int l, double *dphi, double *dgrad);
+
 typedef int (*mfs_shape_gather_1d_fn)(const mfs_shape_ctx *c, const mfs_box *box, double x,
                                       const double *xp, const int *cand, size_t nc, int *idx,
                                       double *out, double *work, int *nn, double *rcond);
@@ -74,6 +84,7 @@ typedef struct {
    * (phi, phi') to out; work: 3 nc doubles.  The rod solver's Eulerian force
    * calls it every step. */
   mfs_shape_gather_1d_fn (*gather_1d)(const mfs_kernel_type *kernel);
+  mfs_shape_dpos_dim_fn dpos; /* any dimension; NULL where not available (kb, rl) */
 } mfs_shape_type;
 
 extern const mfs_shape_type mfs_shape_sph;
@@ -95,6 +106,10 @@ size_t mfs_shape_work_len(int dim, int nn);
 /* t->dpos_1d, or MFS_ENOTSUP where the shape type has none. */
 mfs_status mfs_shape_dpos_1d(const mfs_shape_type *t, const mfs_shape_ctx *c, int nn, const double *d,
                       const double *v, int K, double *dphi, double *dgrad);
+
+/* t->dpos, or MFS_ENOTSUP where the shape type has none. */
+mfs_status mfs_shape_dpos(const mfs_shape_type *t, const mfs_shape_ctx *c, int nn, const double *d,
+                          const double *v, int K, int l, double *dphi, double *dgrad);
 
 #ifdef __cplusplus
 }
