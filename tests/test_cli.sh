@@ -96,6 +96,55 @@ bad_cmd dispersion --frame --frame spatial
 bad_cmd dispersion --points --points 1
 bad_cmd dispersion --kappa --kappa 0.5 --points 10
 bad_cmd dispersion --stretch --dim 2 --stretch 1.1
+# issue 10: options an analysis would ignore are refused; bad states and materials
+PS=(--dim 2 --physics plane-strain)
+bad_cmd dispersion --frame --dim 2 --frame eulerian
+bad_cmd dispersion --frame --dim 2 --frame eulerian-consistent --stress 0.2
+bad_cmd dispersion --stress-yy --dim 2 --stress-yy 0.1
+bad_cmd dispersion --stress-xy --dim 2 --physics antiplane --stress-xy 0.1
+bad_cmd dispersion --stress-yy --stress-yy 0.1
+bad_cmd dispersion --stretch "${PS[@]}" --material paper000 --stretch 0
+bad_cmd dispersion --stretch "${PS[@]}" --material paper000 --stretch -1.2
+bad_cmd dispersion --stretch-y "${PS[@]}" --material neo-hookean --stretch-y 0
+bad_cmd dispersion --stretch "${PS[@]}" --stretch 1.2
+bad_cmd dispersion --material "${PS[@]}" --material rubber
+bad_cmd dispersion --material --material paper000
+bad_cmd dispersion --stress "${PS[@]}" --material paper000 --stress 0.1
+bad_cmd dispersion --stress-yy "${PS[@]}" --material neo-hookean --stress-yy 0.1
+bad_cmd dispersion --poisson --poisson 0.3
+bad_cmd dispersion --poisson "${PS[@]}" --material paper000 --poisson 0.3
+bad_cmd dispersion --support-rule "${PS[@]}" --support-rule reference
+bad_cmd dispersion --support-rule "${PS[@]}" --material paper000 --support-rule reference
+bad_cmd dispersion --spacing --spacing 0.001
+bad_cmd dispersion --modulus --modulus 1e9 --density 2000
+bad_cmd dispersion --modulus "${PS[@]}" --material paper000 --modulus 1e5 --spacing 0.01
+bad_cmd dispersion --frame "${PS[@]}" --shape kb --frame eulerian-consistent
+bad_cmd dispersion --dilation "${PS[@]}" --material paper000 --stretch 1.8 --stretch-y 0.3 --frame eulerian
+# SI columns: omega_rad_s = omega_norm c / dx, growth_per_s, k_per_m = kappa_norm pi / dx
+run dispersion --modulus 10e9 --density 2450 --spacing 0.001 --frame eulerian --shape sph \
+  --kernel quartic --dilation 1.5 --stress 0.1 --kappa 0.5,1
+check "dispersion SI: exit $rc: $(head -c 200 "$err")" test "$rc" -eq 0
+msg=$(awk -F, 'NR == 1 { for (i = 1; i <= NF; i++) h[$i] = i; next }
+  { c = sqrt(10e9 / 2450) / 0.001
+    if (($h["omega_rad_s"] - $h["omega_norm"] * c)^2 > 1e-18 * c^2 ||
+        ($h["growth_per_s"] - $h["growth_norm"] * c)^2 > 1e-18 * c^2 ||
+        ($h["k_per_m"] - $h["kappa_norm"] * 3141.592653589793)^2 > 1e-12 ||
+        ($h["sigma_pa"] - 1e9)^2 > 1 ) printf "row %d: %s; ", NR, $0 }
+  END { if (!h["growth_per_s"]) print "no SI columns" }' "$out")
+check "dispersion SI columns: $msg" test -z "$msg"
+# the classification: paper 000 material, Eulerian kernel, tension: tensile; J = 3.6: material
+run dispersion "${PS[@]}" --material paper000 --stretch 1.05 --frame eulerian-consistent \
+  --quadrature stress-tri --theta 0,45,90 --classify
+lab=$(awk -F, 'NR == 2 { print $NF }' "$out")
+check "dispersion paper000 (1.05, 1) Eulerian: label '$lab', want tensile" test "$lab" = tensile
+run dispersion "${PS[@]}" --material paper000 --stretch 1.9 --stretch-y 1.9 --quadrature stress-tri \
+  --theta 0,45,90 --classify
+lab=$(awk -F, 'NR == 2 { print $NF }' "$out")
+check "dispersion paper000 (1.9, 1.9) Lagrangian: label '$lab', want material" test "$lab" = material
+# paper 003 Fig. 4: sbar = -1, no unstable wave, no material label
+run dispersion --kernel quartic --dilation 1.5 --frame eulerian --stress -1 --classify
+lab=$(awk -F, 'NR == 2 { print $NF }' "$out")
+check "dispersion Fig. 4 sbar = -1: label '$lab', want no material" test "${lab#*material}" = "$lab"
 
 # eigs and bound (finite models)
 bad_cmd eigs --nodes --nodes 4 --periodic --dilation 2

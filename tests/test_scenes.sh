@@ -66,7 +66,8 @@ if "$MFSTAB" run "$G" -o "$TMP/growth.csv"; then
   meas=$(awk -F, 'NR>1 && $1>=4e-6 && $1<=1.15e-5 {x=$1; y=log($2); n++; sx+=x; sy+=y; sxx+=x*x; sxy+=x*y}
                   END{printf "%.8g", (n*sxy-sx*sy)/(n*sxx-sx*sx)}' "$TMP/growth.csv")
   gbar=$("$MFSTAB" dispersion --kernel quartic --dilation 1.5 --shape sph --frame eulerian \
-         --quadrature nodal --stress 0.1 --classify | awk -F, 'NR==2{print $16}')
+         --quadrature nodal --stress 0.1 --classify |
+         awk -F, 'NR==1{for(i=1;i<=NF;i++) if($i=="max_growth_norm") c=i} NR==2{print $c}')
   pred=$(awk -v g="$gbar" -v E=$E -v r=$rho -v dx=$dx 'BEGIN{printf "%.8g", g*sqrt(E/r)/dx}')
   echo "     rod-growth (Eulerian SPH nodal, quartic D=1.5, sbar=0.1): measured gamma = $meas 1/s, predicted Im(omega) = $pred 1/s (growth $gbar c/dx)"
   check "rod-growth: measured growth rate $meas within 2% of the dispersion prediction $pred" \
@@ -194,7 +195,8 @@ disp2() {
   "$MFSTAB" dispersion --dim 2 --kernel cubic --dilation 2 --shape mls --quadrature "$q" "$@" \
     --kappa "$(awk -v a="$m1" -v b="$m2" 'BEGIN{printf "%.17g", sqrt(a*a+b*b)/12}')" \
     --theta "$(awk -v a="$m1" -v b="$m2" 'BEGIN{printf "%.17g", atan2(b,a)*45/atan2(1,1)}')" |
-    awk -F, -v b="$br" 'NR>1 && $12==b {print $13}'
+    awk -F, -v b="$br" 'NR==1{for(i=1;i<=NF;i++){if($i=="branch")cb=i; if($i=="omega2_norm")co=i}}
+                        NR>1 && $cb==b {print $co}'
 }
 # zero_freq CSV: "omega dt n": omega = pi (n-1) / (time between the first and
 # last of the n zero crossings of column 2, each by linear interpolation)
