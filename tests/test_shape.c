@@ -467,7 +467,7 @@ static void check_singular(void)
  * (the shape functions depend only on the offsets x_K - x). */
 static void check_dpos(gsl_rng *rng)
 {
-  double worst = 0.0, wsum = 0.0, w1 = 0.0;
+  double worst = 0.0, wsum = 0.0, w1 = 0.0, wg = 0.0;
   int tested = 0;
   for (int dim = 1; dim <= 2; dim++)
     for (int ik = 0; mfs_kernel_types[ik]; ik++)
@@ -496,6 +496,9 @@ static void check_dpos(gsl_rng *rng)
           continue;
         }
         memset(sum, 0, sizeof sum);
+        double grow[64 * 2 * 2];
+        int Jg = nn / 2;
+        CHECK(mfs_shape_dpos_grad(sh, &c, nn, d, v, Jg, grow, work) == MFS_OK, "dpos_grad");
         for (int K = 0; K < nn; K++)
           for (int l = 0; l < dim; l++) {
             CHECK(mfs_shape_dpos(sh, &c, nn, d, v, K, l, dphi, dgrad) == MFS_OK, "dpos");
@@ -515,6 +518,8 @@ static void check_dpos(gsl_rng *rng)
                 sum[(J * dim + m) * dim + l] += dgrad[J * dim + m];
               }
             }
+            for (int m = 0; m < dim; m++)
+              wg = fmax(wg, fabs(grow[(K * dim + l) * dim + m] - dgrad[Jg * dim + m]));
             if (dim == 1 && sh->dpos_1d) {
               mfs_shape_dpos_1d(sh, &c, nn, d, v, K, dphi1, dgrad1);
               for (int J = 0; J < nn; J++)
@@ -544,8 +549,9 @@ static void check_dpos(gsl_rng *rng)
       }
   CHECK(tested > 0 && worst < 1e-6, "dpos vs central differences of eval: %g", worst);
   CHECK(w1 < 1e-12, "dpos in 1D vs dpos_1d: %g", w1);
+  CHECK(wg < 1e-12, "dpos_grad vs dpos: %g", wg);
   CHECK(wsum < 1e-6, "sum_K dg/dx_K = -dg/dx: %g", wsum);
-  printf("dpos: %d derivatives, fd %.2g, 1D %.2g, sum %.2g\n", tested, worst, w1, wsum);
+  printf("dpos: %d derivatives, fd %.2g, 1D %.2g, sum %.2g, dpos_grad %.2g\n", tested, worst, w1, wsum, wg);
 }
 
 int main(void)

@@ -16,6 +16,7 @@ typedef struct {
   double d[2];   /* x_K - x_I */
   double A, G, M;
   double A2[4], G2[4]; /* plane strain: A^{jl}, G^{jk} */
+  int ij[2];           /* plane strain: d = i a1 + j a2 */
 } disp_term;
 
 struct mfs_disp_plan {
@@ -27,6 +28,7 @@ struct mfs_disp_plan {
   mfs_plane_state st0;  /* that state */
   double R[2][2];  /* primitive translations of the unit cell */
   double a1[2], a2[2];
+  int mij;         /* plane strain: the largest |i|, |j| of the terms' offsets */
   size_t nterm;
   disp_term *t;
 };
@@ -182,6 +184,35 @@ static int covered(const mfs_disp_spec *s)
   return MFS_OK;
 }
 
+static int star_cell(const mfs_disc *d)
+{
+  return d->dim == 2 && d->quadrature->cells == MFS_CELLS_STAR;
+}
+
+/* Keep the quadrature points that see one of the unit-cell particles
+ * 0 .. nb-1 (within a): the rows of the unit cell need no other, and the
+ * per-state plans of an Eulerian map tabulate only these. */
+static void keep_near(mfs_quad *q, const mfs_particles *p, int nb, double a)
+{
+  size_t m = 0;
+  for (size_t Q = 0; Q < q->n; Q++) {
+    int near = 0;
+    for (int b = 0; b < nb && !near; b++) {
+      double dd[3];
+      mfs_box_delta(&p->box, q->x + 2 * Q, p->x + 2 * (size_t)b, dd);
+      near = dd[0] * dd[0] + dd[1] * dd[1] < a * a * (1.0 + 1e-12);
+    }
+    if (!near)
+      continue;
+    q->x[2 * m] = q->x[2 * Q];
+    q->x[2 * m + 1] = q->x[2 * Q + 1];
+    q->w[m] = q->w[Q];
+    q->node[m] = q->node[Q];
+    m++;
+  }
+  q->n = m;
+}
+
 /* Map a periodic box of the reference lattice to the current one, x = F X
  * with F = diag(l1, l2): positions, box, lattice vectors, cells, volumes and
  * weights (times J). */
@@ -265,8 +296,10 @@ mfs_disp_plan *mfs_disp_plan_alloc(const mfs_disp_spec *s, mfs_status *status)
   st = mfs_disc_periodic_box(&d, nx, ny, &p, &q);
   if (st != MFS_OK)
     goto done;
-  if (dp->euler2)
+  if (dp->euler2) {
     stretch_box(p, q, gl1, gl2);
+    keep_near(q, p, star_cell(&d) ? 2 : 1, a);
+  }
   int euler = d.frame != MFS_FRAME_LAGRANGIAN &&
               ((d.dim == 1 && d.material.physics == MFS_PHYS_SCALAR) || dp->euler2);
   mfs_disc dplan = d;
@@ -278,7 +311,7 @@ mfs_disp_plan *mfs_disp_plan_alloc(const mfs_disp_spec *s, mfs_status *status)
   if (st != MFS_OK)
     goto done;
 
-  int star = d.dim == 2 && d.quadrature->cells == MFS_CELLS_STAR;
+  int star = star_cell(&d);
   dp->nb = star ? 2 : 1;
   dp->nbr = dp->nb * dp->ndof;
   memcpy(dp->a1, p->a1, sizeof dp->a1);
@@ -317,6 +350,18 @@ mfs_disp_plan *mfs_disp_plan_alloc(const mfs_disp_spec *s, mfs_status *status)
     if ((st = add_terms(dp, p, &r, I, &cap, mscale)) != MFS_OK)
       goto done;
   }
+  if (dp->plane) { /* the lattice coordinates of every offset, for the phase tables */
+    double det = dp->a1[0] * dp->a2[1] - dp->a1[1] * dp->a2[0];
+    for (size_t i = 0; i < dp->nterm; i++) {
+      disp_term *t = dp->t + i;
+      double u = (t->d[0] * dp->a2[1] - t->d[1] * dp->a2[0]) / det;
+      double v = (dp->a1[0] * t->d[1] - dp->a1[1] * t->d[0]) / det;
+      t->ij[0] = (int)lround(u);
+      t->ij[1] = (int)lround(v);
+      int m = abs(t->ij[0]) > abs(t->ij[1]) ? abs(t->ij[0]) : abs(t->ij[1]);
+      dp->mij = m > dp->mij ? m : dp->mij;
+    }
+  }
   st = MFS_OK;
 done:
   mfs_row_free(&r);
@@ -352,13 +397,31 @@ typedef struct {
   double complex SA[2][2][4], SG[2][2][4], SM[2][2];
 } plane_sums;
 
+enum { MAX_MIJ = 256 };
+
 static void plane_sum(const mfs_disp_plan *dp, const double *k, plane_sums *ps)
 {
   memset(ps, 0, sizeof *ps);
+  /* e^{ik.d} = e^{i i k.a1} e^{i j k.a2} from tables of powers (no sincos per term) */
+  int M = dp->mij < MAX_MIJ ? dp->mij : MAX_MIJ;
+  double complex p1[2 * MAX_MIJ + 1], p2[2 * MAX_MIJ + 1];
+  double ph1 = k[0] * dp->a1[0] + k[1] * dp->a1[1], ph2 = k[0] * dp->a2[0] + k[1] * dp->a2[1];
+  p1[M] = p2[M] = 1.0;
+  for (int m = 1; m <= M; m++) {
+    p1[M + m] = cos(m * ph1) + _Complex_I * sin(m * ph1);
+    p2[M + m] = cos(m * ph2) + _Complex_I * sin(m * ph2);
+    p1[M - m] = conj(p1[M + m]);
+    p2[M - m] = conj(p2[M + m]);
+  }
   for (size_t i = 0; i < dp->nterm; i++) {
     const disp_term *t = dp->t + i;
-    double ph = k[0] * t->d[0] + k[1] * t->d[1];
-    double complex e = cos(ph) + _Complex_I * sin(ph);
+    double complex e;
+    if (abs(t->ij[0]) <= M && abs(t->ij[1]) <= M) {
+      e = p1[M + t->ij[0]] * p2[M + t->ij[1]];
+    } else {
+      double ph = k[0] * t->d[0] + k[1] * t->d[1];
+      e = cos(ph) + _Complex_I * sin(ph);
+    }
     double complex *sa = ps->SA[t->row][t->col], *sg = ps->SG[t->row][t->col];
     for (int q = 0; q < 4; q++)
       sa[q] += t->A2[q] * e;

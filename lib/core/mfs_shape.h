@@ -56,6 +56,13 @@ typedef int (*mfs_shape_dpos_fn)(const mfs_shape_ctx *c, int nn, const double *d
 typedef int (*mfs_shape_dpos_dim_fn)(const mfs_shape_ctx *c, int nn, const double *d,
                                      const double *v, int K, int l, double *dphi, double *dgrad);
 
+/* The same for one gradient and every neighbour at once (what a row of the
+ * consistent Eulerian operator needs, O(nn) instead of O(nn^2)):
+ * out[(K*dim + l)*dim + m] = d g_J,m / d x_K,l for every K < nn and l, m < dim;
+ * work: mfs_shape_work_len(dim, nn) doubles. */
+typedef int (*mfs_shape_dpos_grad_fn)(const mfs_shape_ctx *c, int nn, const double *d,
+                                      const double *v, int J, double *out, double *work);
+
 typedef int (*mfs_shape_gather_1d_fn)(const mfs_shape_ctx *c, const mfs_box *box, double x,
                                       const double *xp, const int *cand, size_t nc, int *idx,
                                       double *out, double *work, int *nn, double *rcond);
@@ -85,6 +92,7 @@ typedef struct {
    * calls it every step. */
   mfs_shape_gather_1d_fn (*gather_1d)(const mfs_kernel_type *kernel);
   mfs_shape_dpos_dim_fn dpos; /* any dimension; NULL where not available (kb, rl) */
+  mfs_shape_dpos_grad_fn dpos_grad; /* one gradient, every neighbour; NULL as dpos */
 } mfs_shape_type;
 
 extern const mfs_shape_type mfs_shape_sph;
@@ -106,6 +114,10 @@ size_t mfs_shape_work_len(int dim, int nn);
 /* t->dpos_1d, or MFS_ENOTSUP where the shape type has none. */
 mfs_status mfs_shape_dpos_1d(const mfs_shape_type *t, const mfs_shape_ctx *c, int nn, const double *d,
                       const double *v, int K, double *dphi, double *dgrad);
+
+/* t->dpos_grad, or MFS_ENOTSUP where the shape type has none. */
+mfs_status mfs_shape_dpos_grad(const mfs_shape_type *t, const mfs_shape_ctx *c, int nn,
+                               const double *d, const double *v, int J, double *out, double *work);
 
 /* t->dpos, or MFS_ENOTSUP where the shape type has none. */
 mfs_status mfs_shape_dpos(const mfs_shape_type *t, const mfs_shape_ctx *c, int nn, const double *d,

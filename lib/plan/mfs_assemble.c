@@ -31,6 +31,7 @@ void mfs_row_free(mfs_row *r)
   free(r->eidx);
   free(r->dphi);
   free(r->dgrad);
+  free(r->dwork);
   mfs_eval_free(&r->ev);
   memset(r, 0, sizeof *r);
 }
@@ -49,7 +50,7 @@ mfs_status mfs_row_init(mfs_row *r, const mfs_plan *pl, const mfs_forms *f)
     return MFS_EINVAL;
   if (f->euler == MFS_EULER_CONSISTENT &&
       !(p->dim == 1 ? mfs_plan_disc(pl)->shape->dpos_1d != NULL
-                    : mfs_plan_disc(pl)->shape->dpos != NULL))
+                    : mfs_plan_disc(pl)->shape->dpos_grad != NULL))
     return MFS_ENOTSUP;
   size_t n = p->n;
   mfs_plan_table(pl, &r->tptr, &r->tidx, &r->ttab);
@@ -91,8 +92,9 @@ mfs_status mfs_row_init(mfs_row *r, const mfs_plan *pl, const mfs_forms *f)
     size_t mx = mfs_plan_max_neighbours(pl);
     r->eidx = malloc(mx * sizeof *r->eidx);
     r->dphi = malloc(mx * sizeof *r->dphi);
-    r->dgrad = malloc(mx * (size_t)p->dim * sizeof *r->dgrad);
-    if (!r->eidx || !r->dphi || !r->dgrad ||
+    r->dgrad = malloc(mx * (size_t)(p->dim * p->dim) * sizeof *r->dgrad);
+    r->dwork = malloc(mfs_shape_work_len(p->dim, (int)mx) * sizeof *r->dwork);
+    if (!r->eidx || !r->dphi || !r->dgrad || !r->dwork ||
         mfs_eval_init(&r->ev, mfs_plan_disc(pl), mfs_plan_support(pl), 1, &p->box, mx) != MFS_OK)
       goto nomem;
   }
@@ -148,15 +150,16 @@ static int add_euler_2d(mfs_row *r, const mfs_plan *pl, const mfs_forms *f, size
   int nk = mfs_eval_gather(&r->ev, pt->x, p->x, p->vol, pt->idx, nn, pt->node, r->eidx);
   if (nk != (int)nn)
     return MFS_EINVAL;
+  /* d grad phi_I / d x_K,l for every neighbour K at once */
+  mfs_status st = mfs_shape_dpos_grad(r->ev.shape, &r->ev.ctx, nk, mfs_eval_offsets(&r->ev),
+                                      mfs_eval_volumes(&r->ev), (int)iI, r->dgrad, r->dwork);
+  if (st != MFS_OK)
+    return st;
   for (int k = 0; k < nk; k++)
     for (int l = 0; l < 2; l++) {
-      mfs_status st = mfs_shape_dpos(r->ev.shape, &r->ev.ctx, nk, mfs_eval_offsets(&r->ev),
-                                     mfs_eval_volumes(&r->ev), k, l, r->dphi, r->dgrad);
-      if (st != MFS_OK)
-        return st;
       double *g = r->G + (size_t)col[k] * 4;
-      g[l] += w * r->dgrad[iI * 2];
-      g[2 + l] += w * r->dgrad[iI * 2 + 1];
+      g[l] += w * r->dgrad[(k * 2 + l) * 2];
+      g[2 + l] += w * r->dgrad[(k * 2 + l) * 2 + 1];
     }
   return MFS_OK;
 }

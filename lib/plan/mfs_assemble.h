@@ -86,7 +86,7 @@ typedef struct {
   int nc, dim;
   mfs_eval ev;    /* consistent Eulerian form: the point's offsets */
   int *eidx;
-  double *dphi, *dgrad;
+  double *dphi, *dgrad, *dwork;
 } mfs_row;
 
 /* A row for plan pl and forms f.  MFS_OK, MFS_EINVAL (forms the plan's table
