@@ -146,6 +146,49 @@ run dispersion --kernel quartic --dilation 1.5 --frame eulerian --stress -1 --cl
 lab=$(awk -F, 'NR == 2 { print $NF }' "$out")
 check "dispersion Fig. 4 sbar = -1: label '$lab', want no material" test "${lab#*material}" = "$lab"
 
+# map (issue 10)
+SR=(--stretch-range 0.5:1.5:3)
+bad_cmd map --stretch-range --stretch-range 0:2:5
+bad_cmd map --stretch-range --stretch-range -1:2:5
+bad_cmd map --stretch-range --stretch-range 0.3:2.0
+bad_cmd map --stretch-range --stretch-range 0.3:2.0:0
+bad_cmd map --stretch-range --stretch-range 0.3:x:4
+bad_cmd map --stress-range --stress-range 0.3:0.5:1
+bad_cmd map --material --material rubber "${SR[@]}"
+bad_cmd map --material --material linear "${SR[@]}"
+bad_cmd map --material --material paper000 --stress-range -1:1:3
+bad_cmd map --dim --dim 1 "${SR[@]}"
+bad_cmd map --physics --physics antiplane "${SR[@]}"
+bad_cmd map --stretch-range "${SR[@]}" --stress-range -1:1:3
+bad_cmd map --stretch-range --quadrature nodal
+bad_cmd map --frame "${SR[@]}" --frame lagrangian,spatial
+bad_cmd map --frame "${SR[@]}" --frame lagrangian,lagrangian
+bad_cmd map --support-rule "${SR[@]}" --support-rule reference
+bad_cmd map --stress-xy "${SR[@]}" --stress-xy 0.1
+bad_cmd map --poisson "${SR[@]}" --poisson 0.3
+bad_cmd map --modulus "${SR[@]}" --modulus 1e5
+bad_cmd map --spacing --material neo-hookean "${SR[@]}" --spacing 0.01
+bad_cmd map --frame "${SR[@]}" --shape kb --frame eulerian-consistent
+# the issue's example on a coarse grid: the Lagrangian stress-point domain is the PDE's
+mkdir -p "$tmp/res"
+run map --dim 2 --physics plane-strain --material paper000 --stretch-range 0.3:2.0:8 --kernel cubic \
+  --shape mls --dilation 2 --quadrature stress-tri --frame lagrangian -o "$tmp/res/map.csv"
+check "map: exit $rc: $(head -c 200 "$err")" test "$rc" -eq 0
+msg=$(awk -F, 'NR == 1 { for (i = 1; i <= NF; i++) h[$i] = i
+                         if (!h["lambda1"] || !h["pde_stable"] || !h["stable"] || !h["min_omega2_norm"] ||
+                             !h["k_worst_x_norm"] || !h["label"]) print "columns missing"; next }
+  { n++; p += $h["pde_stable"]; s += $h["stable"]; if ($h["stable"] && !$h["pde_stable"]) out++
+    if (!$h["pde_stable"] && $h["label"] != "material") bad++ }
+  END { if (n != 64 || p != s || out || bad || p < 50) printf "%d rows, %d PDE-stable, %d stable, %d outside, %d not material", n, p, s, out, bad }' "$tmp/res/map.csv")
+check "map paper000 Lagrangian stress-tri: $msg" test -z "$msg"
+check "map: NaN or inf in the CSV" bash -c "! grep -qiE 'nan|inf' '$tmp/res/map.csv'"
+# a stress map: the linear material is unstable (PDE and scheme) under sigma = -1.2 mu I
+run map --stress-range -1.2:0.6:4 --quadrature nodal --frame lagrangian,eulerian
+lab=$(awk -F, 'NR == 2 { print $16 "," $NF }' "$out")
+check "map --stress-range at (-1.2, -1.2): pde_stable,label = '$lab', want 0,material+rank-deficiency" \
+  test "$lab" = "0,material+rank-deficiency"
+rm -rf "$tmp/res"
+
 # eigs and bound (finite models)
 bad_cmd eigs --nodes --nodes 4 --periodic --dilation 2
 bad_cmd eigs --nodes --nodes 3 --dilation 3

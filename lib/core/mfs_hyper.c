@@ -306,6 +306,34 @@ static double qmin_at(const double *t, double th)
   return mfs_sym2_min_eig(Q);
 }
 
+/* d lambda_min / d theta = v^T Q'(theta) v, v the unit eigenvector of the
+ * smallest eigenvalue of sym Q (Hellmann-Feynman). */
+static double qmin_slope(const double *t, double th)
+{
+  double Q[4], Qp[4], n[2] = {cos(th), sin(th)}, np[2] = {-sin(th), cos(th)};
+  mfs_acoustic_tensor(t, th, Q);
+  for (int i = 0; i < 2; i++)
+    for (int k = 0; k < 2; k++) {
+      double s = 0.0;
+      for (int j = 0; j < 2; j++)
+        for (int l = 0; l < 2; l++)
+          s += t[(((i * 2 + j) * 2 + k) * 2) + l] * (np[j] * n[l] + n[j] * np[l]);
+      Qp[i * 2 + k] = s;
+    }
+  double a = Q[0], d = Q[3], b = 0.5 * (Q[1] + Q[2]), lam = mfs_sym2_min_eig(Q);
+  double v[2] = {b, lam - a}; /* (Q - lam I) v = 0 */
+  if (fabs(a - lam) < fabs(d - lam)) {
+    v[0] = lam - d;
+    v[1] = b;
+  }
+  double nv = hypot(v[0], v[1]);
+  if (!(nv > 0.0))
+    return 0.0;
+  v[0] /= nv;
+  v[1] /= nv;
+  return v[0] * v[0] * Qp[0] + v[0] * v[1] * (Qp[1] + Qp[2]) + v[1] * v[1] * Qp[3];
+}
+
 mfs_status mfs_ellipticity_check(const double *t, int samples, mfs_ellipticity *e)
 {
   if (!t || !e || samples < 0)
@@ -339,6 +367,21 @@ mfs_status mfs_ellipticity_check(const double *t, int samples, mfs_ellipticity *
           x2 = lo + g * (hi - lo);
           f2 = qmin_at(t, x2);
         }
+      }
+      /* then the zero of the slope by bisection: the argmin to rounding (the value is
+       * flat there, so golden section alone fixes it only to sqrt(eps)) */
+      double a0 = 0.5 * (lo + hi) - 1e-6, b0 = 0.5 * (lo + hi) + 1e-6;
+      double sa = qmin_slope(t, a0), sb = qmin_slope(t, b0);
+      if (sa < 0.0 && sb > 0.0) {
+        for (int it = 0; it < 60 && b0 - a0 > 1e-16; it++) {
+          double mid = 0.5 * (a0 + b0), sm = qmin_slope(t, mid);
+          if (sm < 0.0)
+            a0 = mid;
+          else
+            b0 = mid;
+        }
+        lo = a0;
+        hi = b0;
       }
       double xm = 0.5 * (lo + hi), fm = qmin_at(t, xm);
       if (cur < fm) { /* the sample itself (a kink or a flat minimum) */
