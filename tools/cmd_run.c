@@ -27,8 +27,8 @@ static const char about[] =
   "                   hardening; [discretization] interpolation (shepard | linear),\n"
   "                   artificial_viscosity (0: alpha of q = alpha rho c dx v_x); stable\n"
   "                   step from the von Neumann limit of the scheme)\n"
-  "  [material]       density* (kg/m^3), modulus* E (Pa), initial_stress S0 (0 Pa)\n"
-  "                   S = E (F^2-1)/2 + S0, P = F S\n"
+  "  [material]       density* (kg/m^3), modulus* E (Pa), initial_stress S0 (0 Pa):\n"
+  "                   S = E (F^2-1)/2 + S0\n"
   "  [discretization] kernel (quartic), dilation D (2), shape (mls; sph shepard kb rl),\n"
   "                   frame (lagrangian | eulerian), quadrature (nodal | stress | gaussN),\n"
   "                   equilibrate (1: the internal force at u = 0 is a constant load),\n"
@@ -38,18 +38,19 @@ static const char about[] =
   "                   pulse_alpha, pulse_center (v = A exp(-alpha (X - c)^2))\n"
   "  [boundary]       left, right (fixed | free | velocity; default fixed), left_velocity,\n"
   "                   right_velocity (m/s), left_until, right_until (s; then 0)\n"
-  "  [time]           end* (s), dt (s) or safety (0.9: dt = safety * dt_crit), scheme\n"
-  "                   (leapfrog | euler | rk2 | rk4), force (0: a dt above the central-\n"
-  "                   difference limit 2/sqrt(lambda_max) is refused)\n"
+  "  [time]           end* (s), dt (s) or safety (0.9: dt = safety dt_crit), scheme (leapfrog |\n"
+  "                   euler | rk2 | rk4), force (0: dt above 2/sqrt(lambda_max) refused)\n"
   "  [output]         probes* (v_center, u_center, kinetic_energy, potential_energy,\n"
   "                   total_energy, sigma_end, sigma_center, mode_amp, max_v, v_mid, v_err), every (1),\n"
   "                   mode (1: kappa dX/pi of mode_amp = (2/n) |sum_I u_I exp(-i kappa X_I)|)\n"
-  "2D plate ([model] dim = 2: linear, Lagrangian, lumped mass, M u'' = -K u):\n"
+  "2D plate ([model] dim = 2, lumped mass: linear, Lagrangian, M u'' = -K u; plane strain with\n"
+  "a stress or frame = eulerian: St Venant-Kirchhoff S = sigma0 + C:E, M u'' = f(0) - f(u)):\n"
   "  [model]          nodes_y*, length_y* (m): nodes x nodes_y particles on length x length_y;\n"
   "                   physics (antiplane: u_z | plane_strain: u_x, u_y)\n"
   "  [material]       modulus* is the shear modulus mu (Pa); poisson (0.25; plane strain only,\n"
-  "                   in (-1, 0.5))\n"
-  "  [discretization] quadrature (nodal | stress-quad | stress-tri | stress-star | gaussN)\n"
+  "                   in (-1, 0.5)); initial_stress, initial_stress_yy, initial_stress_xy (Pa)\n"
+  "  [discretization] quadrature (nodal | stress-quad | stress-tri | stress-star | gaussN);\n"
+  "                   frame (eulerian: see docs/commands.md), skin (0.5 dx)\n"
   "  [boundary]       edges (fixed | free; default fixed), or [model] periodic = 1\n"
   "  [initial]        component (x | y; plane strain, default x) of the seeds: pulse_amplitude,\n"
   "                   pulse_alpha, pulse_center, pulse_center_y (v = A exp(-alpha |X - c|^2));\n"
@@ -57,10 +58,11 @@ static const char about[] =
   "                   u = A cos(2 pi (m1 X/length + m2 Y/length_y)); center_velocity\n"
   "  [output]         probes: u_center, v_center (component `component` of the particle\n"
   "                   nearest the centre), kinetic_energy, potential_energy, total_energy,\n"
-  "                   modified_energy (kinetic + potential - dt^2/8 a'Ma, conserved by leapfrog),\n"
+  "                   modified_energy (conserved by leapfrog; linear plate only), (frame =\n"
+  "                   eulerian: no potential energy)\n"
   "                   max_v (largest particle speed), mode_amp ((2/N) |sum u e^{-i k.X}| over\n"
   "                   the N dofs of `component`, k of mode_x, mode_y)\n"
-  "  refused with dim = 2: frame = eulerian, initial_stress, equilibrate, skin, perturbation,\n"
+  "  refused with dim = 2: equilibrate (always applied to a stressed plate), perturbation,\n"
   "                   seed, left/right keys, formulation = stress_velocity, [output] mode, the\n"
   "                   probes sigma_end, sigma_center, v_mid, v_err\n"
   "Exit codes: 0 success, 2 bad input (file:line: [section] key = value: why), 1 numerical\n"
@@ -226,7 +228,8 @@ static mfs_integrator build(scene *sc)
   if (sc->dim == 2) {
     mfs_model_spec ms = scene_model_spec(sc);
     in.type = &mfs_integrator_plate;
-    in.solver = mfs_solver2d_alloc(&ms, &st, &bad);
+    const double sigma0[3] = {sc->spec.disc.material.initial_stress, sc->stress_yy, sc->stress_xy};
+    in.solver = mfs_solver2d_alloc_stressed(&ms, sigma0, sc->spec.skin, &st, &bad);
   } else if (sc->stress_velocity) {
     mfs_tsph_spec ts = scene_tsph_spec(sc);
     in.type = &mfs_integrator_tsph;

@@ -66,12 +66,13 @@ static int accel(mfs_solver2d *s, const double *u, double *a)
 
 /* ---- the initially stressed plate (mfs_solver2d.h) ---- */
 
-/* S = sigma0 + lambda tr(E) I + 2 mu E, E = (F^T F - I)/2 (2 x 2, plane strain). */
-static void svk(const mfs_solver2d_work *w, const double *F, double *S, double *E)
+/* S = sigma0 + lambda tr(E) I + 2 mu E, E = (F^T F - I)/2 = (H + H^T + H^T H)/2 from
+ * H = F - I (2 x 2, plane strain; written in H: no cancellation for small strains). */
+static void svk(const mfs_solver2d_work *w, const double *H, double *S, double *E)
 {
-  E[0] = 0.5 * (F[0] * F[0] + F[2] * F[2] - 1.0);
-  E[1] = E[2] = 0.5 * (F[0] * F[1] + F[2] * F[3]);
-  E[3] = 0.5 * (F[1] * F[1] + F[3] * F[3] - 1.0);
+  E[0] = H[0] + 0.5 * (H[0] * H[0] + H[2] * H[2]);
+  E[1] = E[2] = 0.5 * (H[1] + H[2] + H[0] * H[1] + H[2] * H[3]);
+  E[3] = H[3] + 0.5 * (H[1] * H[1] + H[3] * H[3]);
   double tr = E[0] + E[3];
   for (int i = 0; i < 4; i++)
     S[i] = w->sig0[i] + 2.0 * w->mu * E[i] + (i == 0 || i == 3 ? w->lam * tr : 0.0);
@@ -93,20 +94,20 @@ static int force_lagrangian(mfs_solver2d *s, const double *uf, double *ff)
   const mfs_quad *q = s->model->q;
   const int nc = w->nc;
   for (size_t Q = 0; Q < q->n; Q++) {
-    double F[4] = {1.0, 0.0, 0.0, 1.0};
+    double H[4] = {0.0, 0.0, 0.0, 0.0}; /* F - I */
     for (size_t e = w->tptr[Q]; e < w->tptr[Q + 1]; e++) {
       const double *t = w->tab + e * (size_t)nc, *uk = uf + 2 * (size_t)w->tidx[e];
-      F[0] += uk[0] * t[1];
-      F[1] += uk[0] * t[2];
-      F[2] += uk[1] * t[1];
-      F[3] += uk[1] * t[2];
+      H[0] += uk[0] * t[1];
+      H[1] += uk[0] * t[2];
+      H[2] += uk[1] * t[1];
+      H[3] += uk[1] * t[2];
     }
-    double S[4], E[4], P[4];
-    svk(w, F, S, E);
-    P[0] = F[0] * S[0] + F[1] * S[2];
-    P[1] = F[0] * S[1] + F[1] * S[3];
-    P[2] = F[2] * S[0] + F[3] * S[2];
-    P[3] = F[2] * S[1] + F[3] * S[3];
+    double S[4], E[4], P[4]; /* P = F S = S + H S */
+    svk(w, H, S, E);
+    P[0] = S[0] + H[0] * S[0] + H[1] * S[2];
+    P[1] = S[1] + H[0] * S[1] + H[1] * S[3];
+    P[2] = S[2] + H[2] * S[0] + H[3] * S[2];
+    P[3] = S[3] + H[2] * S[1] + H[3] * S[3];
     double wq = q->w[Q];
     for (size_t e = w->tptr[Q]; e < w->tptr[Q + 1]; e++) {
       const double *t = w->tab + e * (size_t)nc;
@@ -221,20 +222,23 @@ static int force_eulerian(mfs_solver2d *s, const double *uf, double *ff)
                         q->node[Q], w->loc, w->out, &nn, NULL);
     if (st != MFS_OK)
       return st;
-    double Fi[4] = {1.0, 0.0, 0.0, 1.0};
+    double G[4] = {0.0, 0.0, 0.0, 0.0}; /* grad_x u: F^-1 = I - G */
     for (int k = 0; k < nn; k++) {
       const double *t = w->out + 3 * k, *uk = uf + 2 * (size_t)w->loc[k];
-      Fi[0] -= uk[0] * t[1];
-      Fi[1] -= uk[0] * t[2];
-      Fi[2] -= uk[1] * t[1];
-      Fi[3] -= uk[1] * t[2];
+      G[0] += uk[0] * t[1];
+      G[1] += uk[0] * t[2];
+      G[2] += uk[1] * t[1];
+      G[3] += uk[1] * t[2];
     }
+    double Fi[4] = {1.0 - G[0], -G[1], -G[2], 1.0 - G[3]};
     double di = Fi[0] * Fi[3] - Fi[1] * Fi[2];
     if (!(di > 0.0))
       return MFS_EDOMAIN; /* an inverted configuration */
     double F[4] = {Fi[3] / di, -Fi[1] / di, -Fi[2] / di, Fi[0] / di}, J = 1.0 / di;
+    double H[4] = {F[0] * G[0] + F[1] * G[2], F[0] * G[1] + F[1] * G[3], /* F - I = F G */
+                   F[2] * G[0] + F[3] * G[2], F[2] * G[1] + F[3] * G[3]};
     double S[4], E[4], FS[4], sg[4];
-    svk(w, F, S, E);
+    svk(w, H, S, E);
     FS[0] = F[0] * S[0] + F[1] * S[2];
     FS[1] = F[0] * S[1] + F[1] * S[3];
     FS[2] = F[2] * S[0] + F[3] * S[2];
@@ -278,16 +282,16 @@ static double energy_lagrangian(mfs_solver2d *s, const double *u)
   full(s, u, w->uf);
   double e = 0.0;
   for (size_t Q = 0; Q < q->n; Q++) {
-    double F[4] = {1.0, 0.0, 0.0, 1.0};
+    double H[4] = {0.0, 0.0, 0.0, 0.0};
     for (size_t ee = w->tptr[Q]; ee < w->tptr[Q + 1]; ee++) {
       const double *t = w->tab + ee * (size_t)w->nc, *uk = w->uf + 2 * (size_t)w->tidx[ee];
-      F[0] += uk[0] * t[1];
-      F[1] += uk[0] * t[2];
-      F[2] += uk[1] * t[1];
-      F[3] += uk[1] * t[2];
+      H[0] += uk[0] * t[1];
+      H[1] += uk[0] * t[2];
+      H[2] += uk[1] * t[1];
+      H[3] += uk[1] * t[2];
     }
     double S[4], E[4];
-    svk(w, F, S, E);
+    svk(w, H, S, E);
     double tr = E[0] + E[3], EE = E[0] * E[0] + 2.0 * E[1] * E[1] + E[3] * E[3];
     double s0E = w->sig0[0] * E[0] + 2.0 * w->sig0[1] * E[1] + w->sig0[3] * E[3];
     e += q->w[Q] * (s0E + 0.5 * w->lam * tr * tr + w->mu * EE);
