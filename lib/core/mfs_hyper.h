@@ -1,7 +1,7 @@
 /* Materials of the finite-deformation and initial-stress analyses: const
  * type tables (as kernels and shape functions are), their stresses, their
  * tangent moduli derived from the stress, and the acoustic tensor's strong
- * ellipticity (the PDE's own stability).  docs/theory-hyper.md derives
+ * ellipticity (the PDE's own stability).  docs/finite-deformation.md derives
  * every formula; tests/test_hyper.c checks the tangents against central
  * differences of the stresses.
  *
