@@ -119,6 +119,7 @@ bad_cmd dispersion --spacing --spacing 0.001
 bad_cmd dispersion --modulus --modulus 1e9 --density 2000
 bad_cmd dispersion --modulus "${PS[@]}" --material paper000 --modulus 1e5 --spacing 0.01
 bad_cmd dispersion --frame "${PS[@]}" --shape kb --frame eulerian-consistent
+bad_cmd dispersion --gamma --dim 2 --lattice hex --quadrature stress-hex --gamma 1.2
 bad_cmd dispersion --dilation "${PS[@]}" --material paper000 --stretch 1.8 --stretch-y 0.3 --frame eulerian
 # SI columns: omega_rad_s = omega_norm c / dx, growth_per_s, k_per_m = kappa_norm pi / dx
 run dispersion --modulus 10e9 --density 2450 --spacing 0.001 --frame eulerian --shape sph \
@@ -169,6 +170,7 @@ bad_cmd map --poisson "${SR[@]}" --poisson 0.3
 bad_cmd map --modulus "${SR[@]}" --modulus 1e5
 bad_cmd map --spacing --material neo-hookean "${SR[@]}" --spacing 0.01
 bad_cmd map --frame "${SR[@]}" --shape kb --frame eulerian-consistent
+bad_cmd map --gamma "${SR[@]}" --lattice hex --quadrature stress-hex --gamma 1.2
 # the example on a coarse grid: the Lagrangian stress-point domain is the PDE's
 mkdir -p "$tmp/res"
 run map --dim 2 --physics plane-strain --material paper000 --stretch-range 0.3:2.0:8 --kernel cubic \

@@ -172,6 +172,8 @@ int cmd_dispersion(int argc, char **argv)
   disc.frame = (mfs_frame)o.frame;
   int plane = disc.material.physics == MFS_PHYS_PLANE_STRAIN;
   int finite = plane && o.material->finite;
+  if (cli_seen(&g[0], "--gamma") && disc.source.lattice == MFS_LATTICE_HEX)
+    cli_die(2, "--gamma %g: dy/dx of the square lattice; the hexagonal lattice has none", d.gamma);
   /* options the analysis would ignore are refused */
   if (disc.dim == 2 && !plane && disc.frame != MFS_FRAME_LAGRANGIAN)
     cli_die(2, "--frame %s: the kernel frame does not enter anti-plane motion (in-plane positions "

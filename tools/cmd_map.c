@@ -293,6 +293,8 @@ int cmd_map(int argc, char **argv)
             o.material == &mfs_hyper_paper000 ? "--spacing" : "--modulus, --density and --spacing");
   double csi = sqrt(mat.type->mu0(mat.c) / mat.density) / d.spacing;
   mfs_disc disc = cli_disc_build(&d, seen_d);
+  if (cli_seen(&g[0], "--gamma") && disc.source.lattice == MFS_LATTICE_HEX)
+    cli_die(2, "--gamma %g: dy/dx of the square lattice; the hexagonal lattice has none", d.gamma);
   double dil1 = 2.0;
   const double *dil = d.dilation.n ? d.dilation.v : &dil1;
   size_t ndil = d.dilation.n ? d.dilation.n : 1;
