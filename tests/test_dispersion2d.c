@@ -651,8 +651,7 @@ static void errors(void)
     mfs_plane_state s;
     mfs_hyper m = mfs_hyper_paper000_constants();
     mfs_plane_state_stretch(&m, 1.0, 1.0, &s);
-    double k[2] = {0.3, 0.1}, complex_dummy = 0;
-    (void)complex_dummy;
+    double k[2] = {0.3, 0.1};
     double complex w[4];
     CHECK(mfs_disp_omega2_state(pl, &s, k, w) == MFS_EINVAL, "Eulerian plan, other stretch");
     mfs_disp_plan_free(pl);
