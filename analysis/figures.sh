@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
 # Write the data of the reproduced tables and figures (paper 003 Tables I-II,
-# Figs 3, 4, 9, 10, 11, 13, 14, 15, 17, 18) as CSV into DIR (default
+# Figs 3, 4, 9, 10, 11, 13, 14, 15, 17, 18; paper 000 Fig. 1) as CSV into DIR (default
 # notebooks-data) with `mfstab reproduce`, the time series of the shipped
 # scenes behind paper 003 Fig. 6 and paper 001 Figs 4 and 8 with `mfstab run`,
 # then one PNG per figure made from that CSV only (analysis/plot_figures.py,
@@ -32,4 +32,8 @@ run analysis/scenes/tsph-viscoplastic-bar.ini -o "$dir/run_tsph_viscoplastic_sce
 echo "wrote the scene runs run_*.csv" >&2
 if [ "${FIGURES_PLOTS:-1}" != 0 ]; then
   /usr/bin/python3 analysis/plot_figures.py "$dir"
+  # paper 000 Fig. 1 (the maps of mfstab reproduce)
+  for m in stress-quad stress-tri zoom; do
+    /usr/bin/python3 analysis/plot_map.py "$dir/fig01_000_$m.csv" "$dir/fig01_000_$m.png"
+  done
 fi

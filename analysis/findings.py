@@ -39,8 +39,8 @@ def curves(rows, *keys):
     for r in rows:
         k = tuple(r[c] for c in keys)
         x, y = out.setdefault(k, ([], []))
-        x.append(float(r["kappa"]))
-        y.append(float(r["omega2"]))
+        x.append(float(r["kappa_norm"]))
+        y.append(float(r["omega2_norm"]))
     return out
 
 
@@ -185,7 +185,7 @@ def _result(paper, ours, numbers, source, **extra):
 
 def fig03(d):
     rows = read(d, "fig03.csv")
-    cs = curves(rows, "dilation", "sigma")
+    cs = curves(rows, "dilation", "sigma_norm")
     n = {}
     for (D, s), (x, y) in cs.items():
         n[(float(D), float(s))] = {"onset": onset(x, y), "cutoff": y[-1], "min": min(y)}
@@ -220,7 +220,7 @@ def fig04(d):
 
 def fig09(d):
     rows = read(d, "fig09.csv")
-    cs = curves(rows, "dilation", "sigma")
+    cs = curves(rows, "dilation", "sigma_norm")
     n = {(float(D), float(s)): {"onset": onset(x, y), "min": min(y), "cutoff": y[-1]}
          for (D, s), (x, y) in cs.items()}
     parts = []
@@ -301,7 +301,7 @@ FIG2D = OrderedDict([
 def edge_table(rows):
     """Per (theta, branch): omega2 at the zone edge and the zero-energy wave numbers."""
     out = OrderedDict()
-    for (th, br), (x, y) in curves(rows, "theta", "branch").items():
+    for (th, br), (x, y) in curves(rows, "theta_deg", "branch").items():
         out[(float(th), int(br))] = {"kappa_edge": x[-1], "edge": y[-1], "zeros": zeros(x, y)}
     return out
 
@@ -338,10 +338,10 @@ def star_vs_triangle(d):
     nearer of the two star-pattern branches (Fig. 15c)."""
     tri = {}
     for r in read(d, "fig15b.csv"):
-        tri[(r["theta"], r["kappa"])] = float(r["omega2"])
+        tri[(r["theta_deg"], r["kappa_norm"])] = float(r["omega2_norm"])
     star = {}
     for r in read(d, "fig15c.csv"):
-        star.setdefault((r["theta"], r["kappa"]), []).append(float(r["omega2"]))
+        star.setdefault((r["theta_deg"], r["kappa_norm"]), []).append(float(r["omega2_norm"]))
     out = OrderedDict()
     for (th, k), v in tri.items():
         if (th, k) in star:
@@ -357,7 +357,7 @@ def fig15(d):
     star45 = t["fig15c.csv"].get((45.0, 1), {}).get("edge", math.nan)
     hexmin = min(v["edge"] for v in t["fig15d.csv"].values())
     sqmin = min(v["edge"] for v in t["fig15b.csv"].values())
-    hexc = coincident(curves(read(d, "fig15d.csv"), "theta"))
+    hexc = coincident(curves(read(d, "fig15d.csv"), "theta_deg"))
     paper = ("(a) quadrilateral centres keep the spurious mode at theta = 45 deg; (c) the star pattern "
              "is almost identical to (b) triangle centres; (d) the hexagonal pattern has no spurious "
              "mode, theta = 0 and 90 deg differ, and its frequency drops less near the cut-off.")

@@ -135,7 +135,7 @@ def by_dilation(d, csv_name, png, fig_no, finding, claim_detail=""):
     notes = []
     for i, (ax, D) in enumerate(zip(fig.axes, dils)):
         sub = [r for r in rows if r["dilation"] == D]
-        cs = F.curves(sub, "sigma")
+        cs = F.curves(sub, "sigma_norm")
         dispersion_panel(ax, cs, lambda k: rf"$\bar\sigma$ = {float(k[0]):g}")
         for j, (k, (x, y)) in enumerate(cs.items()):
             o = F.onset(x, y)
@@ -146,7 +146,7 @@ def by_dilation(d, csv_name, png, fig_no, finding, claim_detail=""):
         ax.set_title(f"{letter(i)}D = {D}")
         notes += coincidence_notes(cs, lambda k: f"σ̄ = {float(k[0]):g}", f"D = {D}: ")
     legend_right(fig.axes[-1], title=r"stress $\bar\sigma = \sigma/C$")
-    if any(F.onset(x, y) is not None for x, y in F.curves(rows, "dilation", "sigma").values()):
+    if any(F.onset(x, y) is not None for x, y in F.curves(rows, "dilation", "sigma_norm").values()):
         notes.append("▼ on the axis: onset, the smallest κΔx/π with ω² < 0, in the colour of its curve.")
     fig.save(d, png, finding["paper"], finding["ours"], notes)
 
@@ -220,12 +220,12 @@ def fig2d(d, name):
     nrows = (len(panels) + 1) // 2
     fig = Figure(nrows, ncols, head, legend_width=1.75)
     notes = []
-    tri = F.curves(F.read(d, "fig15b.csv"), "theta") if name == "fig15" else None
+    tri = F.curves(F.read(d, "fig15b.csv"), "theta_deg") if name == "fig15" else None
     zero_seen = False
     for i, (ax, (csv_name, label)) in enumerate(zip(fig.axes, panels)):
         rows = F.read(d, csv_name)
-        cs = F.curves(rows, "theta", "branch")
-        thetas = F.values(rows, "theta")
+        cs = F.curves(rows, "theta_deg", "branch")
+        thetas = F.values(rows, "theta_deg")
         branches = F.values(rows, "branch")
         handles = []
         if len(branches) > 1:
@@ -254,7 +254,7 @@ def fig2d(d, name):
                 x, y = cs[(th, branches[0])]
                 ax.plot(x, y, label=f"θ = {th}°", **style(j, len(thetas), len(x)))
                 zero_seen |= mark_zeros(ax, x, y, COLOURS[j % len(COLOURS)])
-            cs1 = F.curves(rows, "theta")
+            cs1 = F.curves(rows, "theta_deg")
             notes += coincidence_notes(cs1, lambda k: f"θ = {k[0]}°", label.split(" ")[0] + " ")
         ax.set_xlabel(AXIS_KAPPA)
         ax.set_ylabel(AXIS_OMEGA2_2D)

@@ -8,6 +8,7 @@
 #include "mfs_kernel.h"
 #include "mfs_lapack.h"
 #include "mfs_material.h"
+#include "mfs_hyper.h"
 #include "mfs_shape.h"
 #include "mfs_particles.h"
 #include "mfs_neighbor.h"

@@ -96,6 +96,100 @@ bad_cmd dispersion --frame --frame spatial
 bad_cmd dispersion --points --points 1
 bad_cmd dispersion --kappa --kappa 0.5 --points 10
 bad_cmd dispersion --stretch --dim 2 --stretch 1.1
+# issue 10: options an analysis would ignore are refused; bad states and materials
+PS=(--dim 2 --physics plane-strain)
+bad_cmd dispersion --frame --dim 2 --frame eulerian
+bad_cmd dispersion --frame --dim 2 --frame eulerian-consistent --stress 0.2
+bad_cmd dispersion --stress-yy --dim 2 --stress-yy 0.1
+bad_cmd dispersion --stress-xy --dim 2 --physics antiplane --stress-xy 0.1
+bad_cmd dispersion --stress-yy --stress-yy 0.1
+bad_cmd dispersion --stretch "${PS[@]}" --material paper000 --stretch 0
+bad_cmd dispersion --stretch "${PS[@]}" --material paper000 --stretch -1.2
+bad_cmd dispersion --stretch-y "${PS[@]}" --material neo-hookean --stretch-y 0
+bad_cmd dispersion --stretch "${PS[@]}" --stretch 1.2
+bad_cmd dispersion --material "${PS[@]}" --material rubber
+bad_cmd dispersion --material --material paper000
+bad_cmd dispersion --stress "${PS[@]}" --material paper000 --stress 0.1
+bad_cmd dispersion --stress-yy "${PS[@]}" --material neo-hookean --stress-yy 0.1
+bad_cmd dispersion --poisson --poisson 0.3
+bad_cmd dispersion --poisson "${PS[@]}" --material paper000 --poisson 0.3
+bad_cmd dispersion --support-rule "${PS[@]}" --support-rule reference
+bad_cmd dispersion --support-rule "${PS[@]}" --material paper000 --support-rule reference
+bad_cmd dispersion --spacing --spacing 0.001
+bad_cmd dispersion --modulus --modulus 1e9 --density 2000
+bad_cmd dispersion --modulus "${PS[@]}" --material paper000 --modulus 1e5 --spacing 0.01
+bad_cmd dispersion --frame "${PS[@]}" --shape kb --frame eulerian-consistent
+bad_cmd dispersion --gamma --dim 2 --lattice hex --quadrature stress-hex --gamma 1.2
+bad_cmd dispersion --dilation "${PS[@]}" --material paper000 --stretch 1.8 --stretch-y 0.3 --frame eulerian
+# SI columns: omega_rad_s = omega_norm c / dx, growth_per_s, k_per_m = kappa_norm pi / dx
+run dispersion --modulus 10e9 --density 2450 --spacing 0.001 --frame eulerian --shape sph \
+  --kernel quartic --dilation 1.5 --stress 0.1 --kappa 0.5,1
+check "dispersion SI: exit $rc: $(head -c 200 "$err")" test "$rc" -eq 0
+msg=$(awk -F, 'NR == 1 { for (i = 1; i <= NF; i++) h[$i] = i; next }
+  { c = sqrt(10e9 / 2450) / 0.001
+    if (($h["omega_rad_s"] - $h["omega_norm"] * c)^2 > 1e-18 * c^2 ||
+        ($h["growth_per_s"] - $h["growth_norm"] * c)^2 > 1e-18 * c^2 ||
+        ($h["k_per_m"] - $h["kappa_norm"] * 3141.592653589793)^2 > 1e-12 ||
+        ($h["sigma_pa"] - 1e9)^2 > 1 ) printf "row %d: %s; ", NR, $0 }
+  END { if (!h["growth_per_s"]) print "no SI columns" }' "$out")
+check "dispersion SI columns: $msg" test -z "$msg"
+# the classification: paper 000 material, Eulerian kernel, tension: tensile; J = 3.6: material
+run dispersion "${PS[@]}" --material paper000 --stretch 1.05 --frame eulerian-consistent \
+  --quadrature stress-tri --theta 0,45,90 --classify
+lab=$(awk -F, 'NR == 2 { print $NF }' "$out")
+check "dispersion paper000 (1.05, 1) Eulerian: label '$lab', want tensile" test "$lab" = tensile
+run dispersion "${PS[@]}" --material paper000 --stretch 1.9 --stretch-y 1.9 --quadrature stress-tri \
+  --theta 0,45,90 --classify
+lab=$(awk -F, 'NR == 2 { print $NF }' "$out")
+check "dispersion paper000 (1.9, 1.9) Lagrangian: label '$lab', want material" test "$lab" = material
+# paper 003 Fig. 4: sbar = -1, no unstable wave, no material label
+run dispersion --kernel quartic --dilation 1.5 --frame eulerian --stress -1 --classify
+lab=$(awk -F, 'NR == 2 { print $NF }' "$out")
+check "dispersion Fig. 4 sbar = -1: label '$lab', want no material" test "${lab#*material}" = "$lab"
+
+# map (issue 10)
+SR=(--stretch-range 0.5:1.5:3)
+bad_cmd map --stretch-range --stretch-range 0:2:5
+bad_cmd map --stretch-range --stretch-range -1:2:5
+bad_cmd map --stretch-range --stretch-range 0.3:2.0
+bad_cmd map --stretch-range --stretch-range 0.3:2.0:0
+bad_cmd map --stretch-range --stretch-range 0.3:x:4
+bad_cmd map --stress-range --stress-range 0.3:0.5:1
+bad_cmd map --material --material rubber "${SR[@]}"
+bad_cmd map --material --material linear "${SR[@]}"
+bad_cmd map --material --material paper000 --stress-range -1:1:3
+bad_cmd map --dim --dim 1 "${SR[@]}"
+bad_cmd map --physics --physics antiplane "${SR[@]}"
+bad_cmd map --stretch-range "${SR[@]}" --stress-range -1:1:3
+bad_cmd map --stretch-range --quadrature nodal
+bad_cmd map --frame "${SR[@]}" --frame lagrangian,spatial
+bad_cmd map --frame "${SR[@]}" --frame lagrangian,lagrangian
+bad_cmd map --support-rule "${SR[@]}" --support-rule reference
+bad_cmd map --stress-xy "${SR[@]}" --stress-xy 0.1
+bad_cmd map --poisson "${SR[@]}" --poisson 0.3
+bad_cmd map --modulus "${SR[@]}" --modulus 1e5
+bad_cmd map --spacing --material neo-hookean "${SR[@]}" --spacing 0.01
+bad_cmd map --frame "${SR[@]}" --shape kb --frame eulerian-consistent
+bad_cmd map --gamma "${SR[@]}" --lattice hex --quadrature stress-hex --gamma 1.2
+# the issue's example on a coarse grid: the Lagrangian stress-point domain is the PDE's
+mkdir -p "$tmp/res"
+run map --dim 2 --physics plane-strain --material paper000 --stretch-range 0.3:2.0:8 --kernel cubic \
+  --shape mls --dilation 2 --quadrature stress-tri --frame lagrangian -o "$tmp/res/map.csv"
+check "map: exit $rc: $(head -c 200 "$err")" test "$rc" -eq 0
+msg=$(awk -F, 'NR == 1 { for (i = 1; i <= NF; i++) h[$i] = i
+                         if (!h["lambda1"] || !h["pde_stable"] || !h["stable"] || !h["min_omega2_norm"] ||
+                             !h["k_worst_x_norm"] || !h["label"]) print "columns missing"; next }
+  { n++; p += $h["pde_stable"]; s += $h["stable"]; if ($h["stable"] && !$h["pde_stable"]) out++
+    if (!$h["pde_stable"] && $h["label"] != "material") bad++ }
+  END { if (n != 64 || p != s || out || bad || p < 50) printf "%d rows, %d PDE-stable, %d stable, %d outside, %d not material", n, p, s, out, bad }' "$tmp/res/map.csv")
+check "map paper000 Lagrangian stress-tri: $msg" test -z "$msg"
+check "map: NaN or inf in the CSV" bash -c "! grep -qiE 'nan|inf' '$tmp/res/map.csv'"
+# a stress map: the linear material is unstable (PDE and scheme) under sigma = -1.2 mu I
+run map --stress-range -1.2:0.6:4 --quadrature nodal --frame lagrangian,eulerian
+lab=$(awk -F, 'NR == 2 { print $16 "," $NF }' "$out")
+check "map --stress-range at (-1.2, -1.2): pde_stable,label = '$lab', want 0,material+rank-deficiency" \
+  test "$lab" = "0,material+rank-deficiency"
+rm -rf "$tmp/res"
 
 # eigs and bound (finite models)
 bad_cmd eigs --nodes --nodes 4 --periodic --dilation 2

@@ -66,7 +66,8 @@ if "$MFSTAB" run "$G" -o "$TMP/growth.csv"; then
   meas=$(awk -F, 'NR>1 && $1>=4e-6 && $1<=1.15e-5 {x=$1; y=log($2); n++; sx+=x; sy+=y; sxx+=x*x; sxy+=x*y}
                   END{printf "%.8g", (n*sxy-sx*sy)/(n*sxx-sx*sx)}' "$TMP/growth.csv")
   gbar=$("$MFSTAB" dispersion --kernel quartic --dilation 1.5 --shape sph --frame eulerian \
-         --quadrature nodal --stress 0.1 --classify | awk -F, 'NR==2{print $16}')
+         --quadrature nodal --stress 0.1 --classify |
+         awk -F, 'NR==1{for(i=1;i<=NF;i++) if($i=="max_growth_norm") c=i} NR==2{print $c}')
   pred=$(awk -v g="$gbar" -v E=$E -v r=$rho -v dx=$dx 'BEGIN{printf "%.8g", g*sqrt(E/r)/dx}')
   echo "     rod-growth (Eulerian SPH nodal, quartic D=1.5, sbar=0.1): measured gamma = $meas 1/s, predicted Im(omega) = $pred 1/s (growth $gbar c/dx)"
   check "rod-growth: measured growth rate $meas within 2% of the dispersion prediction $pred" \
@@ -194,7 +195,8 @@ disp2() {
   "$MFSTAB" dispersion --dim 2 --kernel cubic --dilation 2 --shape mls --quadrature "$q" "$@" \
     --kappa "$(awk -v a="$m1" -v b="$m2" 'BEGIN{printf "%.17g", sqrt(a*a+b*b)/12}')" \
     --theta "$(awk -v a="$m1" -v b="$m2" 'BEGIN{printf "%.17g", atan2(b,a)*45/atan2(1,1)}')" |
-    awk -F, -v b="$br" 'NR>1 && $12==b {print $13}'
+    awk -F, -v b="$br" 'NR==1{for(i=1;i<=NF;i++){if($i=="branch")cb=i; if($i=="omega2_norm")co=i}}
+                        NR>1 && $cb==b {print $co}'
 }
 # zero_freq CSV: "omega dt n": omega = pi (n-1) / (time between the first and
 # last of the n zero crossings of column 2, each by linear interpolation)
@@ -268,15 +270,45 @@ if [ -n "$dtc" ] && "$MFSTAB" run "$PL" -o "$TMP/pl.csv"; then
         "($drift)^2 < 1e-6"
 else bad "plate-pulse-2d run failed (or no dt_crit in: $err)"; fi
 
+# ---------------------------------------------------------------- plate-tensile-2d
+# The tensile instability in 2D: a periodic plane-strain plate under sigma_xx = 0.2 mu with
+# an Eulerian SPH kernel grows at the dispersion module's largest Im(omega) (2%); the same
+# plate with a Lagrangian kernel stays bounded and keeps its energy.
+PT=$SCENES/plate-tensile-2d.ini
+if "$MFSTAB" run "$PT" -o "$TMP/pt.csv"; then
+  # least-squares slope of ln(mode_amp) over t in [1, 4] us (amplitude 1e-11 .. 7e-8 m)
+  meas=$(awk -F, 'NR>1 && $1>=1e-6 && $1<=4.01e-6 {x=$1; y=log($2); n++; sx+=x; sy+=y; sxx+=x*x; sxy+=x*y}
+                  END{printf "%.8g", (n*sxy-sx*sy)/(n*sxx-sx*sx)}' "$TMP/pt.csv")
+  pred=$("$MFSTAB" dispersion --dim 2 --physics plane-strain --poisson 0.3 --shape sph --kernel cubic \
+         --dilation 2 --frame eulerian --quadrature nodal --stress 0.2 --theta "$(seq -s, 0 5 90)" \
+         --classify --modulus 26e9 --density 2700 --spacing 0.001 |
+         awk -F, 'NR==1{for(i=1;i<=NF;i++) h[$i]=i} NR==2{print $h["max_growth_per_s"]}')
+  vg=$(awk -F, 'NR==2{v0=$3} END{printf "%.4g", $3/v0}' "$TMP/pt.csv")
+  echo "     plate-tensile-2d (Eulerian SPH nodal, sigma_xx = 0.2 mu): measured growth $meas 1/s, dispersion's largest Im(omega) $pred 1/s; max_v grew $vg times"
+  check "plate-tensile-2d: measured growth rate $meas within 2% of the dispersion's largest Im(omega) $pred" \
+        "($meas/$pred-1)^2 <= 0.02^2 && $vg > 1e4"
+else bad "plate-tensile-2d run failed"; fi
+if "$MFSTAB" run "$PT" --set discretization.frame=lagrangian --set output.probes=mode_amp,max_v,total_energy \
+     -o "$TMP/ptl.csv"; then
+  read -r vr ar ed <<<"$(awk -F, 'NR==2{v0=$3; a0=$2; e0=$4} NR>1{if($3>vm)vm=$3; if($2>am)am=$2; d=($4-e0)/e0; d=d<0?-d:d; if(d>ed)ed=d}
+                                  END{printf "%.4g %.6g %.3g", vm/v0, am/a0, ed}' "$TMP/ptl.csv")"
+  check "plate-tensile-2d Lagrangian: bounded: max_v/max_v(0) = $vr <= 2, mode_amp/initial = $ar <= 1.01, energy drift $ed < 1e-2" \
+        "$vr <= 2 && $ar <= 1.01 && $ed < 1e-2"
+else bad "plate-tensile-2d Lagrangian run failed"; fi
+
 # Bad 2D scenes: exit 2, one line naming the key, no output file.
 ln=$(grep -n '^\[discretization\]' "$B" | cut -d: -f1)
 sed "s/^\[discretization\]/[discretization]\nframe = eulerian/" "$B" > "$TMP/eul.ini"
-expect2 "2D eulerian frame" "eul.ini:$((ln + 1)): \[discretization\] frame = eulerian: 2D runs are Lagrangian only" "$TMP/eul.ini"
+expect2 "2D eulerian frame, anti-plane" "eul.ini:$((ln + 1)): \[discretization\] frame = eulerian: the kernel frame does not enter anti-plane motion" "$TMP/eul.ini"
 grep -v '^nodes_y' "$B" > "$TMP/noy.ini"
 expect2 "2D without nodes_y" "\[model\] nodes_y: missing; this key is required when \[model\] dim = 2" "$TMP/noy.ini"
 expect2 "2D poisson 0.6" "material.poisson=0.6: must be in (-1, 0.5)" "$PL" --set material.poisson=0.6
 expect2 "2D 1D-only probe" "output.probes=u_center,sigma_end: sigma_end is 1D only" "$B" --set output.probes=u_center,sigma_end
-expect2 "2D initial stress" "material.initial_stress=1e8: not used with \[model\] dim = 2" "$B" --set material.initial_stress=1e8
+expect2 "2D initial stress, anti-plane" "material.initial_stress=1e8: the stressed 2D plate is plane strain" "$B" --set material.initial_stress=1e8
+expect2 "2D initial_stress_yy in 1D" "material.initial_stress_yy=1e8: needs \[model\] dim = 2" "$R" --set material.initial_stress_yy=1e8
+expect2 "2D skin, Lagrangian" "discretization.skin=0.3: the Eulerian neighbour skin needs frame = eulerian" "$PL" --set discretization.skin=0.3
+expect2 "2D Eulerian potential energy" "potential_energy: an Eulerian kernel has no energy" "$SCENES/plate-tensile-2d.ini" --set output.probes=potential_energy
+expect2 "2D stressed modified energy" "modified_energy is the energy the leapfrog conserves on the linear" "$SCENES/plate-tensile-2d.ini" --set discretization.frame=lagrangian --set output.probes=modified_energy
 expect2 "2D stress-velocity" "model.formulation=stress_velocity: the stress-velocity (TSPH) bar is 1D only" "$B" --set model.formulation=stress_velocity
 expect2 "2D poisson in anti-plane" "material.poisson=0.3: plane strain only" "$B" --set material.poisson=0.3
 expect2 "2D mode_amp without a mode" "mode_amp needs the wave vector" "$PL" --set output.probes=mode_amp

@@ -10,6 +10,7 @@
  *     they differentiate (re-gathering the offsets at X +- h e_n);
  *   - sph is V_J W_J;
  *   - a singular moment matrix is an error status, never a NaN. */
+#include <gsl/gsl_randist.h>
 #include <gsl/gsl_rng.h>
 #include <math.h>
 #include <stdlib.h>
@@ -459,6 +460,100 @@ static void check_singular(void)
   mfs_particles_free(p);
 }
 
+/* Position derivatives in any dimension (mfs_shape_type.dpos) against
+ * central differences of eval with one neighbour moved, for every shape that
+ * has them, in 1D (also against dpos_1d) and 2D, at a random point of a
+ * perturbed set; each kernel; and the identity sum_K d g_J / d x_K = -d g_J/dx
+ * (the shape functions depend only on the offsets x_K - x). */
+static void check_dpos(gsl_rng *rng)
+{
+  double worst = 0.0, wsum = 0.0, w1 = 0.0, wg = 0.0;
+  int tested = 0;
+  for (int dim = 1; dim <= 2; dim++)
+    for (int ik = 0; mfs_kernel_types[ik]; ik++)
+      for (int is = 0; mfs_shape_types[is]; is++) {
+        const mfs_shape_type *sh = mfs_shape_types[is];
+        if (!sh->dpos) {
+          CHECK(mfs_shape_dpos(sh, NULL, 0, NULL, NULL, 0, 0, NULL, NULL) == MFS_ENOTSUP,
+                "%s: no dpos is MFS_ENOTSUP", sh->name);
+          continue;
+        }
+        mfs_shape_ctx c = {.kernel = mfs_kernel_types[ik], .dim = dim, .a = 1.7, .rcond_min = 1e-12};
+        double d[2 * 64], v[64], out[3 * 64], outp[3 * 64], outm[3 * 64], work[4096];
+        double dphi[64], dgrad[2 * 64], dphi1[64], dgrad1[64], sum[2 * 2 * 64];
+        int nn = 0;
+        while (nn < 64 && nn < (dim == 1 ? 6 : 14)) { /* neighbours within a */
+          double x[2] = {gsl_ran_flat(rng, -1.6, 1.6), dim == 2 ? gsl_ran_flat(rng, -1.6, 1.6) : 0};
+          if (hypot(x[0], x[1]) >= 1.55 || hypot(x[0], x[1]) < 0.05)
+            continue;
+          for (int k = 0; k < dim; k++)
+            d[nn * dim + k] = x[k];
+          v[nn++] = gsl_ran_flat(rng, 0.5, 1.5);
+        }
+        double rc;
+        if (sh->eval(&c, nn, d, v, -1, 1, out, work, &rc) != MFS_OK) {
+          CHECK(0, "%s %s %dD: eval", sh->name, c.kernel->name, dim);
+          continue;
+        }
+        memset(sum, 0, sizeof sum);
+        double grow[64 * 2 * 2];
+        int Jg = nn / 2;
+        CHECK(mfs_shape_dpos_grad(sh, &c, nn, d, v, Jg, grow, work) == MFS_OK, "dpos_grad");
+        for (int K = 0; K < nn; K++)
+          for (int l = 0; l < dim; l++) {
+            CHECK(mfs_shape_dpos(sh, &c, nn, d, v, K, l, dphi, dgrad) == MFS_OK, "dpos");
+            double h = 1e-5, dd[2 * 64];
+            memcpy(dd, d, sizeof dd);
+            dd[K * dim + l] = d[K * dim + l] + h;
+            sh->eval(&c, nn, dd, v, -1, 1, outp, work, &rc);
+            dd[K * dim + l] = d[K * dim + l] - h;
+            sh->eval(&c, nn, dd, v, -1, 1, outm, work, &rc);
+            int os = 1 + dim;
+            for (int J = 0; J < nn; J++) {
+              double fd = (outp[J * os] - outm[J * os]) / (2 * h);
+              worst = fmax(worst, fabs(fd - dphi[J]));
+              for (int m = 0; m < dim; m++) {
+                double fg = (outp[J * os + 1 + m] - outm[J * os + 1 + m]) / (2 * h);
+                worst = fmax(worst, fabs(fg - dgrad[J * dim + m]));
+                sum[(J * dim + m) * dim + l] += dgrad[J * dim + m];
+              }
+            }
+            for (int m = 0; m < dim; m++)
+              wg = fmax(wg, fabs(grow[(K * dim + l) * dim + m] - dgrad[Jg * dim + m]));
+            if (dim == 1 && sh->dpos_1d) {
+              mfs_shape_dpos_1d(sh, &c, nn, d, v, K, dphi1, dgrad1);
+              for (int J = 0; J < nn; J++)
+                w1 = fmax(w1, fmax(fabs(dphi1[J] - dphi[J]), fabs(dgrad1[J] - dgrad[J])));
+            }
+            tested++;
+          }
+        /* sum_K d g_J,m / d x_K,l = -d g_J,m / d x_l: central differences of eval in x */
+        for (int l = 0; l < dim; l++) {
+          double h = 1e-5, dd[2 * 64];
+          for (int J = 0; J < nn; J++)
+            for (int k = 0; k < dim; k++)
+              dd[J * dim + k] = d[J * dim + k] - (k == l ? h : 0.0); /* x + h e_l */
+          sh->eval(&c, nn, dd, v, -1, 1, outp, work, &rc);
+          for (int J = 0; J < nn; J++)
+            for (int k = 0; k < dim; k++)
+              dd[J * dim + k] = d[J * dim + k] + (k == l ? h : 0.0);
+          sh->eval(&c, nn, dd, v, -1, 1, outm, work, &rc);
+          int os = 1 + dim;
+          for (int J = 0; J < nn; J++)
+            for (int m = 0; m < dim; m++) {
+              double gx = (outp[J * os + 1 + m] - outm[J * os + 1 + m]) / (2 * h);
+              if (sh->partition_of_unity) /* sph: V_J W(x_J - x) depends on x_J - x too */
+                wsum = fmax(wsum, fabs(sum[(J * dim + m) * dim + l] + gx));
+            }
+        }
+      }
+  CHECK(tested > 0 && worst < 1e-6, "dpos vs central differences of eval: %g", worst);
+  CHECK(w1 < 1e-12, "dpos in 1D vs dpos_1d: %g", w1);
+  CHECK(wg < 1e-12, "dpos_grad vs dpos: %g", wg);
+  CHECK(wsum < 1e-6, "sum_K dg/dx_K = -dg/dx: %g", wsum);
+  printf("dpos: %d derivatives, fd %.2g, 1D %.2g, sum %.2g, dpos_grad %.2g\n", tested, worst, w1, wsum, wg);
+}
+
 int main(void)
 {
   gsl_rng *rng = gsl_rng_alloc(gsl_rng_mt19937);
@@ -483,6 +578,7 @@ int main(void)
   mfs_particles_free(hex);
 
   check_singular();
+  check_dpos(rng);
 
   /* lookup and the volume flags */
   int ns = 0;

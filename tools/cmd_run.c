@@ -16,7 +16,8 @@
 #include "scene.h"
 
 static const char usage[] = "mfstab run SCENE.ini [--set SECTION.KEY=VALUE ...] [-o FILE]";
-static const char about[] =
+/* the help in two literals (each under C's 4095 characters) */
+static const char about_1d[] =
   "Explicit time integration of a 1D rod of particles (lib/time/mfs_solver.h) or a 2D plate\n"
   "(dim = 2, lib/time/mfs_solver2d.h) described by an INI scene file; writes CSV columns t followed\n"
   "by the probes of [output] probes.\n"
@@ -28,8 +29,8 @@ static const char about[] =
   "                   hardening; [discretization] interpolation (shepard | linear),\n"
   "                   artificial_viscosity (0: alpha of q = alpha rho c dx v_x); stable\n"
   "                   step from the von Neumann limit of the scheme)\n"
-  "  [material]       density* (kg/m^3), modulus* E (Pa), initial_stress S0 (0 Pa)\n"
-  "                   S = E (F^2-1)/2 + S0, P = F S\n"
+  "  [material]       density* (kg/m^3), modulus* E (Pa), initial_stress S0 (0 Pa):\n"
+  "                   S = E (F^2-1)/2 + S0\n"
   "  [discretization] kernel (quartic), dilation D (2), shape (mls; sph shepard kb rl),\n"
   "                   frame (lagrangian | eulerian), quadrature (nodal | stress | gaussN),\n"
   "                   equilibrate (1: the internal force at u = 0 is a constant load),\n"
@@ -45,13 +46,16 @@ static const char about[] =
   "                   longer run is refused)\n"
   "  [output]         probes* (v_center, u_center, kinetic_energy, potential_energy,\n"
   "                   total_energy, sigma_end, sigma_center, mode_amp, max_v, v_mid, v_err), every (1),\n"
-  "                   mode (1: kappa dX/pi of mode_amp = (2/n) |sum_I u_I exp(-i kappa X_I)|)\n"
-  "2D plate ([model] dim = 2: linear, Lagrangian, lumped mass, M u'' = -K u):\n"
+  "                   mode (1: kappa dX/pi of mode_amp = (2/n) |sum_I u_I exp(-i kappa X_I)|)\n";
+static const char about_2d[] =
+  "2D plate ([model] dim = 2, lumped mass: linear, Lagrangian, M u'' = -K u; plane strain with\n"
+  "a stress or frame = eulerian: St Venant-Kirchhoff S = sigma0 + C:E, M u'' = f(0) - f(u)):\n"
   "  [model]          nodes_y*, length_y* (m): nodes x nodes_y particles on length x length_y;\n"
   "                   physics (antiplane: u_z | plane_strain: u_x, u_y)\n"
   "  [material]       modulus* is the shear modulus mu (Pa); poisson (0.25; plane strain only,\n"
-  "                   in (-1, 0.5))\n"
-  "  [discretization] quadrature (nodal | stress-quad | stress-tri | stress-star | gaussN)\n"
+  "                   in (-1, 0.5)); initial_stress, initial_stress_yy, initial_stress_xy (Pa)\n"
+  "  [discretization] quadrature (nodal | stress-quad | stress-tri | stress-star | gaussN);\n"
+  "                   frame (eulerian: see docs/commands.md), skin (0.5 dx)\n"
   "  [boundary]       edges (fixed | free; default fixed), or [model] periodic = 1\n"
   "  [initial]        component (x | y; plane strain, default x) of the seeds: pulse_amplitude,\n"
   "                   pulse_alpha, pulse_center, pulse_center_y (v = A exp(-alpha |X - c|^2));\n"
@@ -59,10 +63,11 @@ static const char about[] =
   "                   u = A cos(2 pi (m1 X/length + m2 Y/length_y)); center_velocity\n"
   "  [output]         probes: u_center, v_center (component `component` of the particle\n"
   "                   nearest the centre), kinetic_energy, potential_energy, total_energy,\n"
-  "                   modified_energy (kinetic + potential - dt^2/8 a'Ma, conserved by leapfrog),\n"
+  "                   modified_energy (conserved by leapfrog; linear plate only), (frame =\n"
+  "                   eulerian: no potential energy)\n"
   "                   max_v (largest particle speed), mode_amp ((2/N) |sum u e^{-i k.X}| over\n"
   "                   the N dofs of `component`, k of mode_x, mode_y)\n"
-  "  refused with dim = 2: frame = eulerian, initial_stress, equilibrate, skin, perturbation,\n"
+  "  refused with dim = 2: equilibrate (always applied to a stressed plate), perturbation,\n"
   "                   seed, left/right keys, formulation = stress_velocity, [output] mode, the\n"
   "                   probes sigma_end, sigma_center, v_mid, v_err\n"
   "Exit codes: 0 success, 2 bad input (file:line: [section] key = value: why), 1 numerical\n"
@@ -237,7 +242,8 @@ mfs_integrator scene_build(scene *sc)
   if (sc->dim == 2) {
     mfs_model_spec ms = scene_model_spec(sc);
     in.type = &mfs_integrator_plate;
-    in.solver = mfs_solver2d_alloc(&ms, &st, &bad);
+    const double sigma0[3] = {sc->spec.disc.material.initial_stress, sc->stress_yy, sc->stress_xy};
+    in.solver = mfs_solver2d_alloc_stressed(&ms, sigma0, sc->spec.skin, &st, &bad);
   } else if (sc->stress_velocity) {
     mfs_tsph_spec ts = scene_tsph_spec(sc);
     in.type = &mfs_integrator_tsph;
@@ -361,6 +367,8 @@ int cmd_run(int argc, char **argv)
   memset(&o, 0, sizeof o);
   unsigned char seen[4];
   cli_group g = {opts, &o, seen};
+  static char about[sizeof about_1d + sizeof about_2d];
+  snprintf(about, sizeof about, "%s%s", about_1d, about_2d);
   cli_parse(argc, argv, usage, about, &g, 1);
   if (!o.scene)
     cli_die(2, "missing the scene file; usage: mfstab run SCENE.ini [--set S.K=V] [-o FILE]");

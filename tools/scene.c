@@ -24,7 +24,7 @@ typedef enum { K_INT, K_POS, K_NONNEG, K_REAL, K_BOOL, K_WORD } key_type;
 typedef enum {
   /* [model] */ NODES, LENGTH, PERIODIC, FORMULATION, DIM, NODES_Y, LENGTH_Y, PHYSICS, MAX_ENTRIES,
   /* [material] */ DENSITY, MODULUS, INITIAL_STRESS, YIELD_STRESS, FLUIDITY, EXPONENT, HARDENING,
-  POISSON,
+  POISSON, INITIAL_STRESS_YY, INITIAL_STRESS_XY,
   /* [discretization] */ INTERPOLATION, VISCOSITY, KERNEL, DILATION, SHAPE, FRAME, QUADRATURE, EQUILIBRATE, SKIN,
   /* [initial] */ CENTER_VELOCITY, PERTURBATION, SEED, PULSE_AMPLITUDE, PULSE_ALPHA, PULSE_CENTER,
   PULSE_CENTER_Y, MODE_X, MODE_Y, MODE_AMPLITUDE, COMPONENT,
@@ -60,6 +60,8 @@ static const key_def keys[NKEYS] = {
   [EXPONENT] = {"material", "perzyna_exponent", K_NONNEG, 0},
   [HARDENING] = {"material", "hardening", K_REAL, 0},
   [POISSON] = {"material", "poisson", K_REAL, 0},
+  [INITIAL_STRESS_YY] = {"material", "initial_stress_yy", K_REAL, 0},
+  [INITIAL_STRESS_XY] = {"material", "initial_stress_xy", K_REAL, 0},
   [INTERPOLATION] = {"discretization", "interpolation", K_WORD, 0},
   [VISCOSITY] = {"discretization", "artificial_viscosity", K_NONNEG, 0},
   [KERNEL] = {"discretization", "kernel", K_WORD, 0},
@@ -283,6 +285,8 @@ static void set_key(scene *sc, int line, key_id id, const char *value)
   case DENSITY: sp->disc.material.density = x; break;
   case MODULUS: sp->disc.material.modulus = x; break;
   case INITIAL_STRESS: sp->disc.material.initial_stress = x; break;
+  case INITIAL_STRESS_YY: sc->stress_yy = x; break;
+  case INITIAL_STRESS_XY: sc->stress_xy = x; break;
   case KERNEL:
     if (!(sp->disc.kernel = mfs_kernel_find(value))) {
       char names[256];
@@ -546,9 +550,7 @@ static const struct {
   key_id id;
   const char *why;
 } not_2d[] = {
-  {INITIAL_STRESS, "2D runs have no initial stress (lib/time/mfs_solver2d.h: linear, unstressed)"},
-  {EQUILIBRATE, "2D runs have no initial stress to equilibrate"},
-  {SKIN, "the Eulerian neighbour skin; 2D runs are Lagrangian only"},
+  {EQUILIBRATE, "a stressed 2D plate always applies the internal force at u = 0 as a load"},
   {PERTURBATION, "1D only; seed a 2D run with mode_x, mode_y, mode_amplitude or a pulse"},
   {SEED, "1D only (the random perturbation)"},
   {LEFT, "1D only; in 2D use [boundary] edges = fixed | free"},
@@ -568,7 +570,8 @@ static const struct {
 
 /* Keys of a 2D run that a 1D run refuses. */
 static const key_id only_2d[] = {NODES_Y, LENGTH_Y, PHYSICS, POISSON, PULSE_CENTER_Y, MODE_X,
-                                 MODE_Y, MODE_AMPLITUDE, COMPONENT, EDGES};
+                                 MODE_Y, MODE_AMPLITUDE, COMPONENT, EDGES, INITIAL_STRESS_YY,
+                                 INITIAL_STRESS_XY};
 
 /* A pulse centred outside the body [0, length] starts nothing (and v_err
  * would divide by a zero exact solution). */
@@ -589,9 +592,21 @@ static void finish_2d(scene *sc)
   if (sc->stress_velocity)
     scene_key_error(sc, "model", "formulation",
                     "the stress-velocity (TSPH) bar is 1D only; 2D runs are displacement form");
-  if (sp->disc.frame == MFS_FRAME_EULERIAN)
-    scene_key_error(sc, "discretization", "frame",
-                    "2D runs are Lagrangian only (no 2D Eulerian operator in lib/time/mfs_solver2d.h)");
+  int stressed = sp->disc.material.initial_stress != 0.0 || sc->stress_yy != 0.0 ||
+                 sc->stress_xy != 0.0 || sp->disc.frame == MFS_FRAME_EULERIAN;
+  if (sc->physics != MFS_PHYS_PLANE_STRAIN) {
+    static const int plane[] = {INITIAL_STRESS, INITIAL_STRESS_YY, INITIAL_STRESS_XY};
+    for (int i = 0; i < 3; i++)
+      if (values[plane[i]][0])
+        scene_key_error(sc, "material", keys[plane[i]].name,
+                        "the stressed 2D plate is plane strain ([model] physics = plane_strain)");
+    if (sp->disc.frame == MFS_FRAME_EULERIAN)
+      scene_key_error(sc, "discretization", "frame",
+                      "the kernel frame does not enter anti-plane motion; an Eulerian 2D plate "
+                      "is plane strain ([model] physics = plane_strain)");
+  }
+  if (values[SKIN][0] && sp->disc.frame != MFS_FRAME_EULERIAN)
+    scene_key_error(sc, "discretization", "skin", "the Eulerian neighbour skin needs frame = eulerian");
   for (size_t i = 0; i < sizeof not_2d / sizeof not_2d[0]; i++)
     if (values[not_2d[i].id][0])
       scene_key_error(sc, keys[not_2d[i].id].section, keys[not_2d[i].id].name,
@@ -636,6 +651,14 @@ static void finish_2d(scene *sc)
     if (q == PROBE_MODE_AMP && !sc->have_mode)
       scene_key_error(sc, "output", "probes",
                       "mode_amp needs the wave vector [initial] mode_x, mode_y");
+    if (q == PROBE_MODIFIED && stressed)
+      scene_key_error(sc, "output", "probes",
+                      "modified_energy is the energy the leapfrog conserves on the linear "
+                      "(unstressed, Lagrangian) plate");
+    if ((q == PROBE_POTENTIAL || q == PROBE_TOTAL) && sp->disc.frame == MFS_FRAME_EULERIAN)
+      scene_key_error(sc, "output", "probes",
+                      "%s: an Eulerian kernel has no energy (its operator is not symmetric)",
+                      scene_probe_names[q]);
   }
   sp->bc[0] = sp->bc[1] = MFS_BC_FREE; /* unused in 2D */
 }

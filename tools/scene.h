@@ -39,6 +39,8 @@ typedef struct {
   double ly;               /* [model] length_y */
   mfs_physics_kind physics; /* [model] physics: antiplane | plane_strain */
   double poisson;          /* [material] poisson (plane strain; 0.25) */
+  double stress_yy, stress_xy; /* [material] initial_stress_yy, _xy (Pa; 2D plane strain; sigma_xx
+                                  is initial_stress) */
   int fixed_edges;         /* [boundary] edges: fixed (1, default) | free (0) */
   double pulse_center_y;   /* 2D pulse: v = A exp(-alpha |X - c|^2) */
   int component;           /* [initial] component: 0 x (anti-plane: u_z), 1 y */

@@ -43,6 +43,10 @@ static double onset(const mfs_disp_plan *pl, int sign, const mfs_sampling *smp, 
                     double tol, double complex *buf)
 {
   double lo = 0.0, hi = sign > 0 ? 10.0 : 1.0 + 1e-9;
+  mfs_plane_state ps;
+  if (mfs_disp_plan_spec(pl)->disc.material.physics == MFS_PHYS_PLANE_STRAIN &&
+      mfs_disp_state(pl, sign * hi, &ps) != MFS_OK)
+    return NAN; /* a finite material: the state is the plan's */
   if (min_omega2(pl, sign * hi, smp, npts, buf) >= -tol)
     return NAN;
   if (min_omega2(pl, 0.0, smp, npts, buf) < -tol)
@@ -66,13 +70,75 @@ static void wave_vector(const mfs_disp_plan *pl, double kap, double th, double *
     kv[1] = 0.0;
 }
 
+unsigned mfs_class_labels(int unstable, const mfs_ellipticity *pde, double sigma_nn,
+                          double sigma_mean, int spurious_zeros)
+{
+  unsigned l = 0;
+  int continuum = !mfs_pde_stable(pde);
+  if (unstable && continuum)
+    l |= MFS_LABEL_MATERIAL;
+  if (unstable && !continuum) {
+    double s = sigma_nn != 0.0 ? sigma_nn : sigma_mean;
+    l |= s < 0.0 ? MFS_LABEL_COMPRESSIVE : MFS_LABEL_TENSILE;
+  }
+  if (spurious_zeros > 0)
+    l |= MFS_LABEL_RANK_DEFICIENCY;
+  return l;
+}
+
+/* The normal stress along the current direction of the frame's wave vector
+ * (kappa, theta), and the mean stress, at sbar. */
+static void stress_along(const mfs_disp_plan *pl, double sbar, double kap, double th, double *snn,
+                         double *smean)
+{
+  mfs_plane_state ps;
+  if (mfs_disp_state(pl, sbar, &ps) != MFS_OK) { /* 1D, anti-plane (equibiaxial) */
+    *snn = *smean = sbar;
+    return;
+  }
+  double k[2] = {kap * M_PI * cos(th), kap * M_PI * sin(th)}, kc[2];
+  mfs_disp_current_k(pl, k, kc);
+  double nk = hypot(kc[0], kc[1]), n[2] = {nk > 0 ? kc[0] / nk : 1.0, nk > 0 ? kc[1] / nk : 0.0};
+  const double *s = ps.sigma;
+  *snn = n[0] * n[0] * s[0] + n[0] * n[1] * (s[1] + s[2]) + n[1] * n[1] * s[3];
+  *smean = 0.5 * (s[0] + s[3]);
+}
+
+/* max over the rays of the relative deviation of the acoustic branches'
+ * omega^2 / kappa^2 from the continuum's (Richardson from kappa dx = 1e-3, 2e-3) */
+static double longwave_dev(const mfs_disp_plan *pl, double sbar, const mfs_sampling *smp,
+                           double complex *buf)
+{
+  const int nd = mfs_physics_ndof(mfs_disp_plan_spec(pl)->disc.material.physics);
+  double dev = 0.0;
+  for (size_t t = 0; t < smp->ntheta; t++) {
+    double q[2], w[2][2];
+    if (mfs_disp_longwave(pl, sbar, smp->theta[t], q) != MFS_OK)
+      return NAN;
+    for (int r = 0; r < 2; r++) {
+      double h = r ? 2e-3 : 1e-3;
+      if (mfs_disp_omega2(pl, sbar, h / M_PI, smp->theta[t], buf) != MFS_OK)
+        return NAN;
+      for (int b = 0; b < nd; b++)
+        w[r][b] = creal(buf[b]) / (h * h);
+    }
+    double sc = 0.0;
+    for (int b = 0; b < nd; b++)
+      sc = fmax(sc, fabs(q[b]));
+    for (int b = 0; b < nd; b++) {
+      double rich = (4.0 * w[0][b] - w[1][b]) / 3.0;
+      dev = fmax(dev, fabs(rich - q[b]) / (sc > 0.0 ? sc : 1.0));
+    }
+  }
+  return dev;
+}
+
 mfs_status mfs_classify(const mfs_disp_plan *pl, const mfs_sampling *smp, const double *sbar,
                         size_t nsbar, mfs_class *out)
 {
   if (!pl || !smp || !smp->theta || smp->ntheta < 1 || (!smp->kappa && smp->npoints < 2) ||
       (smp->kappa && smp->nkappa < 1) || (!sbar && nsbar))
     return MFS_EINVAL;
-  const mfs_disp_spec *sp = mfs_disp_plan_spec(pl);
   const int nb = mfs_disp_branches(pl), nk = (int)nsamples(smp);
   double complex buf[4];
   double complex *w = malloc((size_t)nk * (size_t)nb * sizeof *w);
@@ -156,16 +222,20 @@ mfs_status mfs_classify(const mfs_disp_plan *pl, const mfs_sampling *smp, const 
     }
     if (sb == 0.0)
       nzero0 = c.spurious_zeros;
+    if (st != MFS_OK)
+      break;
     c.unstable = c.min_omega2 < -tol || c.max_growth > 0.0;
-    double F = sp->stretch > 0.0 ? sp->stretch : 1.0;
-    double cbar = (sp->disc.dim == 1 && sp->disc.frame == MFS_FRAME_LAGRANGIAN) ? F * F + sb
-                                                                                : 1.0 + sb;
-    if (cbar <= 0.0)
-      c.labels |= MFS_LABEL_MATERIAL;
-    if (c.unstable && cbar > 0.0)
-      c.labels |= MFS_LABEL_TENSILE;
-    if (nzero0 > 0)
-      c.labels |= MFS_LABEL_RANK_DEFICIENCY;
+    if ((st = mfs_disp_pde(pl, sb, &c.pde)) != MFS_OK)
+      break;
+    double smean = NAN;
+    c.sigma_nn = NAN;
+    if (c.unstable) { /* the worst mode: the most negative omega^2, else the fastest growth */
+      int by_min = c.min_omega2 < -tol;
+      stress_along(pl, sb, by_min ? c.kappa_at_min : c.kappa_at_max_growth,
+                   smp->theta[by_min ? c.theta_at_min : c.theta_at_max_growth], &c.sigma_nn, &smean);
+    }
+    c.longwave_deviation = longwave_dev(pl, sb, smp, buf);
+    c.labels = mfs_class_labels(c.unstable, &c.pde, c.sigma_nn, smean, nzero0);
     out[si] = c;
   }
   free(w);
@@ -174,15 +244,21 @@ mfs_status mfs_classify(const mfs_disp_plan *pl, const mfs_sampling *smp, const 
 
 const char *mfs_class_label(unsigned labels, char *buf, size_t len)
 {
-  static const char *const names[] = {"material", "tensile", "rank-deficiency"};
+  static const struct {
+    unsigned bit;
+    const char *name;
+  } names[] = {{MFS_LABEL_MATERIAL, "material"},
+               {MFS_LABEL_TENSILE, "tensile"},
+               {MFS_LABEL_COMPRESSIVE, "compressive"},
+               {MFS_LABEL_RANK_DEFICIENCY, "rank-deficiency"}};
   if (len == 0)
     return buf;
   buf[0] = '\0';
-  for (int k = 0; k < 3; k++)
-    if (labels & (1u << k)) {
+  for (int k = 0; k < 4; k++)
+    if (labels & names[k].bit) {
       if (buf[0])
         strncat(buf, "+", len - strlen(buf) - 1);
-      strncat(buf, names[k], len - strlen(buf) - 1);
+      strncat(buf, names[k].name, len - strlen(buf) - 1);
     }
   if (!buf[0])
     strncat(buf, "stable", len - 1);

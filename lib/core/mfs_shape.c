@@ -574,6 +574,307 @@ static int mls_dpos(const mfs_shape_ctx *c, int nn, const double *d, const doubl
   return mls_dpos_m(2, c, nn, d, K, dphi, dgrad);
 }
 
+mfs_status mfs_shape_dpos(const mfs_shape_type *t, const mfs_shape_ctx *c, int nn, const double *d,
+                          const double *v, int K, int l, double *dphi, double *dgrad)
+{
+  if (!t->dpos)
+    return MFS_ENOTSUP;
+  return t->dpos(c, nn, d, v, K, l, dphi, dgrad);
+}
+
+/* W, its gradient Wx and Hessian Wxx with respect to the evaluation point x,
+ * for the offset d = x_J - x (the kernel_values formulas for one neighbour). */
+static void kernel_one(const mfs_shape_ctx *c, const double *dj, double *W, double *Wx,
+                       double *Wxx)
+{
+  int dim = c->dim;
+  double r2 = 0.0;
+  for (int k = 0; k < dim; k++)
+    r2 += dj[k] * dj[k];
+  mfs_kernel_value kv = mfs_kernel_radial(c->kernel, dim, c->a, sqrt(r2));
+  double t = r2 > 0.0 ? (kv.d2W - kv.dW_r) / r2 : 0.0;
+  *W = kv.W;
+  for (int k = 0; k < dim; k++) {
+    Wx[k] = -kv.dW_r * dj[k];
+    for (int q = 0; q < dim; q++)
+      Wxx[k * dim + q] = (k == q ? kv.dW_r : 0.0) + t * dj[k] * dj[q];
+  }
+}
+
+/* sph, any dimension: phi_J = V_J W(x_J - x), only J = K moves:
+ * d phi_K / d x_K,l = -V_K W_x,l, d g_K,m / d x_K,l = -V_K W_xx,ml. */
+static int sph_dpos_dim(const mfs_shape_ctx *c, int nn, const double *d, const double *v, int K,
+                        int l, double *dphi, double *dgrad)
+{
+  int dim = c->dim;
+  if (nn < 1 || K < 0 || K >= nn || l < 0 || l >= dim || dim > MAXD)
+    return MFS_EINVAL;
+  for (int J = 0; J < nn; J++) {
+    dphi[J] = 0.0;
+    for (int m = 0; m < dim; m++)
+      dgrad[J * dim + m] = 0.0;
+  }
+  double W, Wx[MAXD], Wxx[MAXD * MAXD];
+  kernel_one(c, d + K * dim, &W, Wx, Wxx);
+  dphi[K] = -v[K] * Wx[l];
+  for (int m = 0; m < dim; m++)
+    dgrad[K * dim + m] = -v[K] * Wxx[m * dim + l];
+  return MFS_OK;
+}
+
+/* Shepard (m = 1) and linear MLS (m = 1 + dim), any dimension: the 1D dual
+ * numbers of mls_dpos_m with the basis p_J = [1, d_J / a], the dual unit on
+ * d_K,l: W~_J = -delta_JK W_x,l, (W_x,q)~ = -delta_JK W_xx,ql, p~_K = e_{1+l}/a;
+ * A = sum W p p^T, B_q = sum W_x,q p p^T, gamma = A^-1 e_0,
+ * gamma_q = A^-1 (e_{1+q}/a - B_q gamma), and their duals. */
+static int mls_dpos_dim_m(int m, const mfs_shape_ctx *c, int nn, const double *d, int K, int l,
+                          double *dphi, double *dgrad)
+{
+  const int dim = c->dim;
+  if (nn < 1 || K < 0 || K >= nn || l < 0 || l >= dim || dim > MAXD || m > MAXM)
+    return MFS_EINVAL;
+  const double ia = 1.0 / c->a;
+  double A[MAXM * MAXM] = {0}, At[MAXM * MAXM] = {0};
+  double B[MAXD][MAXM * MAXM] = {{0}}, Bt[MAXD][MAXM * MAXM] = {{0}};
+  for (int J = 0; J < nn; J++) {
+    double W, Wx[MAXD], Wxx[MAXD * MAXD], p[MAXM], pt[MAXM] = {0};
+    kernel_one(c, d + J * dim, &W, Wx, Wxx);
+    int e = J == K;
+    double Wt = e ? -Wx[l] : 0.0, Wxt[MAXD];
+    for (int q = 0; q < dim; q++)
+      Wxt[q] = e ? -Wxx[q * dim + l] : 0.0;
+    p[0] = 1.0;
+    for (int i = 1; i < m; i++)
+      p[i] = d[J * dim + i - 1] * ia;
+    if (e && m > 1)
+      pt[1 + l] = ia;
+    for (int i = 0; i < m; i++)
+      for (int j = 0; j < m; j++) {
+        double pp = p[i] * p[j], ppt = pt[i] * p[j] + p[i] * pt[j];
+        A[i * m + j] += W * pp;
+        At[i * m + j] += Wt * pp + W * ppt;
+        for (int q = 0; q < dim; q++) {
+          B[q][i * m + j] += Wx[q] * pp;
+          Bt[q][i * m + j] += Wxt[q] * pp + Wx[q] * ppt;
+        }
+      }
+  }
+  double L[MAXM * MAXM] = {0};
+  if (cholesky(m, A, L))
+    return MFS_ESINGULAR;
+  double g[MAXM] = {0}, gt[MAXM], gx[MAXD][MAXM], gxt[MAXD][MAXM];
+  g[0] = 1.0;
+  chol_solve(m, L, g);
+  for (int i = 0; i < m; i++) { /* gamma~ = -A^-1 A~ gamma */
+    double s = 0.0;
+    for (int j = 0; j < m; j++)
+      s -= At[i * m + j] * g[j];
+    gt[i] = s;
+  }
+  chol_solve(m, L, gt);
+  for (int q = 0; q < dim; q++) {
+    for (int i = 0; i < m; i++) { /* gamma_q = A^-1 (e_{1+q}/a - B_q gamma) */
+      double s = (m > 1 && i == q + 1) ? ia : 0.0;
+      for (int j = 0; j < m; j++)
+        s -= B[q][i * m + j] * g[j];
+      gx[q][i] = s;
+    }
+    chol_solve(m, L, gx[q]);
+    for (int i = 0; i < m; i++) { /* gamma_q~ = A^-1 (-A~ gamma_q - B_q~ gamma - B_q gamma~) */
+      double s = 0.0;
+      for (int j = 0; j < m; j++)
+        s -= At[i * m + j] * gx[q][j] + Bt[q][i * m + j] * g[j] + B[q][i * m + j] * gt[j];
+      gxt[q][i] = s;
+    }
+    chol_solve(m, L, gxt[q]);
+  }
+  for (int J = 0; J < nn; J++) {
+    double W, Wx[MAXD], Wxx[MAXD * MAXD], p[MAXM], pt[MAXM] = {0};
+    kernel_one(c, d + J * dim, &W, Wx, Wxx);
+    int e = J == K;
+    double Wt = e ? -Wx[l] : 0.0;
+    p[0] = 1.0;
+    for (int i = 1; i < m; i++)
+      p[i] = d[J * dim + i - 1] * ia;
+    if (e && m > 1)
+      pt[1 + l] = ia;
+    double gp = 0.0, gpt = 0.0;
+    for (int i = 0; i < m; i++) {
+      gp += g[i] * p[i];
+      gpt += gt[i] * p[i] + g[i] * pt[i];
+    }
+    dphi[J] = gpt * W + gp * Wt;
+    for (int q = 0; q < dim; q++) {
+      double gxp = 0.0, gxpt = 0.0, Wxt = e ? -Wxx[q * dim + l] : 0.0;
+      for (int i = 0; i < m; i++) {
+        gxp += gx[q][i] * p[i];
+        gxpt += gxt[q][i] * p[i] + gx[q][i] * pt[i];
+      }
+      dgrad[J * dim + q] = gxpt * W + gxp * Wt + gpt * Wx[q] + gp * Wxt;
+    }
+  }
+  return MFS_OK;
+}
+
+/* sph: only K = J moves phi_J = V_J W(x_J - x). */
+static int sph_dpos_grad(const mfs_shape_ctx *c, int nn, const double *d, const double *v, int J,
+                         double *out, double *work)
+{
+  (void)work;
+  int dim = c->dim;
+  if (nn < 1 || J < 0 || J >= nn || dim > MAXD)
+    return MFS_EINVAL;
+  memset(out, 0, (size_t)nn * dim * dim * sizeof *out);
+  double W, Wx[MAXD], Wxx[MAXD * MAXD];
+  kernel_one(c, d + J * dim, &W, Wx, Wxx);
+  for (int l = 0; l < dim; l++)
+    for (int m = 0; m < dim; m++)
+      out[(J * dim + l) * dim + m] = -v[J] * Wxx[m * dim + l];
+  return MFS_OK;
+}
+
+/* mls_dpos_dim_m for the gradient of neighbour J only, every (K, l): the
+ * sums A, B_q, their factorization and gamma, gamma_q are shared, and each
+ * dual (A~, B_q~) has the rank-two form of the one neighbour K. */
+static int mls_dpos_grad_m(int m, const mfs_shape_ctx *c, int nn, const double *d, int J,
+                           double *out, double *work)
+{
+  const int dim = c->dim, st = 1 + dim + dim * dim;
+  if (nn < 1 || J < 0 || J >= nn || dim > MAXD || m > MAXM)
+    return MFS_EINVAL;
+  const double ia = 1.0 / c->a;
+  double A[MAXM * MAXM] = {0}, B[MAXD][MAXM * MAXM] = {{0}};
+  for (int K = 0; K < nn; K++) { /* kernel values into work: W, Wx, Wxx per neighbour */
+    double *kw = work + (size_t)K * st, p[MAXM];
+    kernel_one(c, d + K * dim, kw, kw + 1, kw + 1 + dim);
+    p[0] = 1.0;
+    for (int i = 1; i < m; i++)
+      p[i] = d[K * dim + i - 1] * ia;
+    for (int i = 0; i < m; i++)
+      for (int j = 0; j < m; j++) {
+        double pp = p[i] * p[j];
+        A[i * m + j] += kw[0] * pp;
+        for (int q = 0; q < dim; q++)
+          B[q][i * m + j] += kw[1 + q] * pp;
+      }
+  }
+  double L[MAXM * MAXM] = {0};
+  if (cholesky(m, A, L))
+    return MFS_ESINGULAR;
+  double g[MAXM] = {0}, gx[MAXD][MAXM];
+  g[0] = 1.0;
+  chol_solve(m, L, g);
+  for (int q = 0; q < dim; q++) {
+    for (int i = 0; i < m; i++) {
+      double s = (m > 1 && i == q + 1) ? ia : 0.0;
+      for (int j = 0; j < m; j++)
+        s -= B[q][i * m + j] * g[j];
+      gx[q][i] = s;
+    }
+    chol_solve(m, L, gx[q]);
+  }
+  /* neighbour J's own values */
+  const double *kJ = work + (size_t)J * st;
+  double pJ[MAXM];
+  pJ[0] = 1.0;
+  for (int i = 1; i < m; i++)
+    pJ[i] = d[J * dim + i - 1] * ia;
+  double gpJ = 0.0, gxpJ[MAXD] = {0};
+  for (int i = 0; i < m; i++) {
+    gpJ += g[i] * pJ[i];
+    for (int q = 0; q < dim; q++)
+      gxpJ[q] += gx[q][i] * pJ[i];
+  }
+  for (int K = 0; K < nn; K++) {
+    const double *kw = work + (size_t)K * st;
+    double p[MAXM];
+    p[0] = 1.0;
+    for (int i = 1; i < m; i++)
+      p[i] = d[K * dim + i - 1] * ia;
+    double pg = 0.0, pgx[MAXD] = {0}; /* p_K . gamma, p_K . gamma_q */
+    for (int i = 0; i < m; i++) {
+      pg += p[i] * g[i];
+      for (int q = 0; q < dim; q++)
+        pgx[q] += p[i] * gx[q][i];
+    }
+    for (int l = 0; l < dim; l++) {
+      /* A~ v = Wt p (p.v) + W (pt (p.v) + p (pt.v)), pt = e_{1+l}/a (m > 1) */
+      double Wt = -kw[1 + l];
+      double gt[MAXM], r[MAXM];
+      for (int i = 0; i < m; i++) {
+        double ptv = m > 1 ? g[1 + l] * ia : 0.0, pti = (m > 1 && i == 1 + l) ? ia : 0.0;
+        r[i] = -(Wt * p[i] * pg + kw[0] * (pti * pg + p[i] * ptv));
+      }
+      for (int i = 0; i < m; i++)
+        gt[i] = r[i];
+      chol_solve(m, L, gt);
+      double gtpJ = 0.0, ptJ = (K == J && m > 1) ? g[1 + l] * ia : 0.0; /* gamma~.p_J, gamma.p~_J */
+      for (int i = 0; i < m; i++)
+        gtpJ += gt[i] * pJ[i];
+      double WtJ = K == J ? Wt : 0.0;
+      for (int q = 0; q < dim; q++) {
+        /* gamma_q~ = A^-1 (-A~ gamma_q - B_q~ gamma - B_q gamma~) */
+        double Wxt = -kw[1 + dim + q * dim + l], Wx = kw[1 + q];
+        double ptgx = m > 1 ? gx[q][1 + l] * ia : 0.0, ptg = m > 1 ? g[1 + l] * ia : 0.0;
+        double gxt[MAXM];
+        for (int i = 0; i < m; i++) {
+          double pti = (m > 1 && i == 1 + l) ? ia : 0.0;
+          double s = -(Wt * p[i] * pgx[q] + kw[0] * (pti * pgx[q] + p[i] * ptgx));
+          s -= Wxt * p[i] * pg + Wx * (pti * pg + p[i] * ptg);
+          for (int j = 0; j < m; j++)
+            s -= B[q][i * m + j] * gt[j];
+          gxt[i] = s;
+        }
+        chol_solve(m, L, gxt);
+        double gxtpJ = 0.0, ptgxJ = (K == J && m > 1) ? gx[q][1 + l] * ia : 0.0;
+        for (int i = 0; i < m; i++)
+          gxtpJ += gxt[i] * pJ[i];
+        double WxtJ = K == J ? Wxt : 0.0;
+        /* d g_J,q = gx~.p_J W_J + gx.p~_J W_J + gx.p_J W~_J + g~.p_J Wx_J + g.p~_J Wx_J + g.p_J Wx~_J */
+        out[(K * dim + l) * dim + q] = (gxtpJ + ptgxJ) * kJ[0] + gxpJ[q] * WtJ +
+                                       (gtpJ + ptJ) * kJ[1 + q] + gpJ * WxtJ;
+      }
+    }
+  }
+  return MFS_OK;
+}
+
+static int shepard_dpos_grad(const mfs_shape_ctx *c, int nn, const double *d, const double *v,
+                             int J, double *out, double *work)
+{
+  (void)v;
+  return mls_dpos_grad_m(1, c, nn, d, J, out, work);
+}
+
+static int mls_dpos_grad(const mfs_shape_ctx *c, int nn, const double *d, const double *v, int J,
+                         double *out, double *work)
+{
+  (void)v;
+  return mls_dpos_grad_m(1 + c->dim, c, nn, d, J, out, work);
+}
+
+mfs_status mfs_shape_dpos_grad(const mfs_shape_type *t, const mfs_shape_ctx *c, int nn,
+                               const double *d, const double *v, int J, double *out, double *work)
+{
+  if (!t->dpos_grad)
+    return MFS_ENOTSUP;
+  return t->dpos_grad(c, nn, d, v, J, out, work);
+}
+
+static int shepard_dpos_dim(const mfs_shape_ctx *c, int nn, const double *d, const double *v,
+                            int K, int l, double *dphi, double *dgrad)
+{
+  (void)v;
+  return mls_dpos_dim_m(1, c, nn, d, K, l, dphi, dgrad);
+}
+
+static int mls_dpos_dim(const mfs_shape_ctx *c, int nn, const double *d, const double *v, int K,
+                        int l, double *dphi, double *dgrad)
+{
+  (void)v;
+  return mls_dpos_dim_m(1 + c->dim, c, nn, d, K, l, dphi, dgrad);
+}
+
 static int sph_eval(const mfs_shape_ctx *c, int nn, const double *d, const double *v, int self,
                     int order, double *out, double *work, double *rcond)
 {
@@ -665,19 +966,25 @@ const mfs_shape_type mfs_shape_sph = {.name = "sph",
                                       .uses_volumes = 1,
                                       .gradient_is_derivative = 1,
                                       .eval = sph_eval,
-                                      .dpos_1d = sph_dpos};
+                                      .dpos_1d = sph_dpos,
+                                      .dpos = sph_dpos_dim,
+                                      .dpos_grad = sph_dpos_grad};
 const mfs_shape_type mfs_shape_shepard = {.name = "shepard",
                                           .partition_of_unity = 1,
                                           .gradient_is_derivative = 1,
                                           .eval = shepard_eval,
-                                          .dpos_1d = shepard_dpos};
+                                          .dpos_1d = shepard_dpos,
+                                          .dpos = shepard_dpos_dim,
+                                          .dpos_grad = shepard_dpos_grad};
 const mfs_shape_type mfs_shape_mls = {.name = "mls",
                                       .partition_of_unity = 1,
                                       .linear_complete = 1,
                                       .gradient_is_derivative = 1,
                                       .eval = mls_eval,
                                       .dpos_1d = mls_dpos,
-                                      .gather_1d = mls_gather_1d};
+                                      .gather_1d = mls_gather_1d,
+                                      .dpos = mls_dpos_dim,
+                                      .dpos_grad = mls_dpos_grad};
 const mfs_shape_type mfs_shape_kb = {.name = "kb", .partition_of_unity = 1, .eval = kb_eval};
 const mfs_shape_type mfs_shape_rl = {
   .name = "rl", .uses_volumes = 1, .partition_of_unity = 1, .eval = rl_eval};

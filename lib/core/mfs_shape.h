@@ -46,6 +46,23 @@ typedef struct {
 typedef int (*mfs_shape_dpos_fn)(const mfs_shape_ctx *c, int nn, const double *d,
                                  const double *v, int K, double *dphi, double *dgrad);
 
+/* Position derivatives in any dimension (the consistent linearization of
+ * an Eulerian kernel in 2D): the derivatives of phi_J(x) and of its gradient
+ * g_J(x) with respect to the position of neighbour K along axis l
+ * (d[K*dim + l] = x_K,l - x_l moves), x and every other position fixed, for
+ * every J: dphi[J] = d phi_J / d x_K,l, dgrad[J*dim + m] = d g_J,m / d x_K,l.
+ * Exact (forward-mode dual numbers through the MLS formulas).  MFS_OK,
+ * MFS_EINVAL, MFS_ESINGULAR as eval. */
+typedef int (*mfs_shape_dpos_dim_fn)(const mfs_shape_ctx *c, int nn, const double *d,
+                                     const double *v, int K, int l, double *dphi, double *dgrad);
+
+/* The same for one gradient and every neighbour at once (what a row of the
+ * consistent Eulerian operator needs, O(nn) instead of O(nn^2)):
+ * out[(K*dim + l)*dim + m] = d g_J,m / d x_K,l for every K < nn and l, m < dim;
+ * work: mfs_shape_work_len(dim, nn) doubles. */
+typedef int (*mfs_shape_dpos_grad_fn)(const mfs_shape_ctx *c, int nn, const double *d,
+                                      const double *v, int J, double *out, double *work);
+
 /* The fused 1D gather and evaluation (mfs_shape_type.gather_1d): the
  * candidates cand[0..nc) of the particles xp within a of x, their indices
  * to idx[0..*nn) and their values and derivatives to out (2 per neighbour);
@@ -80,6 +97,8 @@ typedef struct {
    * (phi, phi') to out; work: 3 nc doubles.  The rod solver's Eulerian force
    * calls it every step. */
   mfs_shape_gather_1d_fn (*gather_1d)(const mfs_kernel_type *kernel);
+  mfs_shape_dpos_dim_fn dpos; /* any dimension; NULL where not available (kb, rl) */
+  mfs_shape_dpos_grad_fn dpos_grad; /* one gradient, every neighbour; NULL as dpos */
 } mfs_shape_type;
 
 extern const mfs_shape_type mfs_shape_sph;
@@ -101,6 +120,14 @@ size_t mfs_shape_work_len(int dim, int nn);
 /* t->dpos_1d, or MFS_ENOTSUP where the shape type has none. */
 mfs_status mfs_shape_dpos_1d(const mfs_shape_type *t, const mfs_shape_ctx *c, int nn, const double *d,
                       const double *v, int K, double *dphi, double *dgrad);
+
+/* t->dpos_grad, or MFS_ENOTSUP where the shape type has none. */
+mfs_status mfs_shape_dpos_grad(const mfs_shape_type *t, const mfs_shape_ctx *c, int nn,
+                               const double *d, const double *v, int J, double *out, double *work);
+
+/* t->dpos, or MFS_ENOTSUP where the shape type has none. */
+mfs_status mfs_shape_dpos(const mfs_shape_type *t, const mfs_shape_ctx *c, int nn, const double *d,
+                          const double *v, int K, int l, double *dphi, double *dgrad);
 
 #ifdef __cplusplus
 }

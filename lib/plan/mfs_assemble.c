@@ -31,6 +31,7 @@ void mfs_row_free(mfs_row *r)
   free(r->eidx);
   free(r->dphi);
   free(r->dgrad);
+  free(r->dwork);
   mfs_eval_free(&r->ev);
   memset(r, 0, sizeof *r);
 }
@@ -41,10 +42,16 @@ mfs_status mfs_row_init(mfs_row *r, const mfs_plan *pl, const mfs_forms *f)
   int need2 = f->euler != MFS_EULER_NONE || f->ls_beta > 0.0;
   if (mfs_plan_order(pl) < (need2 ? 2 : 1))
     return MFS_EINVAL;
-  if (f->euler != MFS_EULER_NONE &&
-      (mfs_plan_particles(pl)->dim != 1 || f->physics != MFS_PHYS_SCALAR))
-    return MFS_EINVAL;
   const mfs_particles *p = mfs_plan_particles(pl);
+  int euler2 = p->dim == 2 && f->physics == MFS_PHYS_PLANE_STRAIN;
+  if (f->euler != MFS_EULER_NONE && !(p->dim == 1 && f->physics == MFS_PHYS_SCALAR) && !euler2)
+    return MFS_EINVAL;
+  if (f->outer && f->physics != MFS_PHYS_PLANE_STRAIN)
+    return MFS_EINVAL;
+  if (f->euler == MFS_EULER_CONSISTENT &&
+      !(p->dim == 1 ? mfs_plan_disc(pl)->shape->dpos_1d != NULL
+                    : mfs_plan_disc(pl)->shape->dpos_grad != NULL))
+    return MFS_ENOTSUP;
   size_t n = p->n;
   mfs_plan_table(pl, &r->tptr, &r->tidx, &r->ttab);
   const mfs_quad *q = mfs_plan_quad(pl);
@@ -65,6 +72,7 @@ mfs_status mfs_row_init(mfs_row *r, const mfs_plan *pl, const mfs_forms *f)
   }
   cap = cap < n ? cap : (n ? n : 1);
   r->ndof = mfs_physics_ndof(f->physics);
+  r->gsz = euler2 ? 4 : 1;
   r->cap = cap;
   r->col = malloc(cap * sizeof *r->col);
   r->pcol = malloc(mfs_plan_max_neighbours(pl) * sizeof *r->pcol);
@@ -74,7 +82,7 @@ mfs_status mfs_row_init(mfs_row *r, const mfs_plan *pl, const mfs_forms *f)
   if (f->density != 0.0 || f->ls_beta > 0.0)
     r->M = malloc(cap * sizeof *r->M);
   if (f->euler != MFS_EULER_NONE)
-    r->G = malloc(cap * sizeof *r->G);
+    r->G = malloc(cap * (size_t)r->gsz * sizeof *r->G);
   if (!r->col || !r->pcol || !r->mark || (f->stiffness && !r->K) ||
       ((f->density != 0.0 || f->ls_beta > 0.0) && !r->M) || (f->euler && !r->G))
     goto nomem;
@@ -84,8 +92,9 @@ mfs_status mfs_row_init(mfs_row *r, const mfs_plan *pl, const mfs_forms *f)
     size_t mx = mfs_plan_max_neighbours(pl);
     r->eidx = malloc(mx * sizeof *r->eidx);
     r->dphi = malloc(mx * sizeof *r->dphi);
-    r->dgrad = malloc(mx * sizeof *r->dgrad);
-    if (!r->eidx || !r->dphi || !r->dgrad ||
+    r->dgrad = malloc(mx * (size_t)(p->dim * p->dim) * sizeof *r->dgrad);
+    r->dwork = malloc(mfs_shape_work_len(p->dim, (int)mx) * sizeof *r->dwork);
+    if (!r->eidx || !r->dphi || !r->dgrad || !r->dwork ||
         mfs_eval_init(&r->ev, mfs_plan_disc(pl), mfs_plan_support(pl), 1, &p->box, mx) != MFS_OK)
       goto nomem;
   }
@@ -93,6 +102,66 @@ mfs_status mfs_row_init(mfs_row *r, const mfs_plan *pl, const mfs_forms *f)
 nomem:
   mfs_row_free(r);
   return MFS_ENOMEM;
+}
+
+/* The 2D Eulerian term of one point (mfs_assemble.h): G^{jk}_IK += w (H T)_jk
+ * with the point's motion T, minus w H at K = I (paper), plus w d grad
+ * phi_I / d x_K (consistent). */
+static int add_euler_2d(mfs_row *r, const mfs_plan *pl, const mfs_forms *f, size_t I,
+                        const mfs_point *pt, size_t iI, const int *col)
+{
+  const int nc = pt->ncomp;
+  const double w = pt->w, *tab = pt->phi, *H = tab + iI * (size_t)nc + 3; /* H_jm = d_m d_j phi_I */
+  const size_t nn = pt->nn;
+  const mfs_particles *p = mfs_plan_particles(pl);
+  const double F[2] = {f->stretch > 0.0 ? f->stretch : 1.0, f->stretch_y > 0.0 ? f->stretch_y : 1.0};
+  for (size_t e = 0; e < nn; e++) {
+    int K = pt->idx[e];
+    const double *fk = tab + e * (size_t)nc;
+    double T[4];
+    if (pt->node >= 0) {
+      if (K != pt->node)
+        continue;
+      T[0] = T[3] = 1.0;
+      T[1] = T[2] = 0.0;
+    } else if (f->euler == MFS_EULER_PAPER) {
+      double dQK[3], dQI[3]; /* x_K - x_I through the point, minimum image */
+      mfs_box_delta(&p->box, pt->x, p->x + (size_t)K * 2, dQK);
+      mfs_box_delta(&p->box, pt->x, p->x + I * 2, dQI);
+      double u[2] = {(1.0 - 1.0 / F[0]) * (dQK[0] - dQI[0]), (1.0 - 1.0 / F[1]) * (dQK[1] - dQI[1])};
+      for (int m = 0; m < 2; m++)
+        for (int k = 0; k < 2; k++)
+          T[m * 2 + k] = F[m] * ((m == k ? fk[0] : 0.0) - u[m] * fk[1 + k]);
+    } else {
+      T[0] = T[3] = fk[0];
+      T[1] = T[2] = 0.0;
+    }
+    double *g = r->G + (size_t)col[e] * 4;
+    for (int j = 0; j < 2; j++)
+      for (int k = 0; k < 2; k++)
+        g[j * 2 + k] += w * (H[j * 2] * T[k] + H[j * 2 + 1] * T[2 + k]);
+  }
+  if (f->euler == MFS_EULER_PAPER) {
+    double *g = r->G + (size_t)col[iI] * 4;
+    for (int q = 0; q < 4; q++)
+      g[q] -= w * H[q];
+    return MFS_OK;
+  }
+  int nk = mfs_eval_gather(&r->ev, pt->x, p->x, p->vol, pt->idx, nn, pt->node, r->eidx);
+  if (nk != (int)nn)
+    return MFS_EINVAL;
+  /* d grad phi_I / d x_K,l for every neighbour K at once */
+  mfs_status st = mfs_shape_dpos_grad(r->ev.shape, &r->ev.ctx, nk, mfs_eval_offsets(&r->ev),
+                                      mfs_eval_volumes(&r->ev), (int)iI, r->dgrad, r->dwork);
+  if (st != MFS_OK)
+    return st;
+  for (int k = 0; k < nk; k++)
+    for (int l = 0; l < 2; l++) {
+      double *g = r->G + (size_t)col[k] * 4;
+      g[l] += w * r->dgrad[(k * 2 + l) * 2];
+      g[2 + l] += w * r->dgrad[(k * 2 + l) * 2 + 1];
+    }
+  return MFS_OK;
 }
 
 /* The forms' contributions of one quadrature point pt to row I (at position
@@ -107,7 +176,17 @@ static inline int add_point(mfs_row *r, const mfs_plan *pl, const mfs_forms *f, 
   const size_t nn = pt->nn;
   if (f->stiffness) {
     double *K = r->K;
-    if (f->physics == MFS_PHYS_PLANE_STRAIN) { /* B_I^T D B_J */
+    if (f->outer) { /* A^{jl}: grad phi_I (x) grad phi_J */
+      double ix = w * fi[1], iy = w * fi[2];
+      for (size_t e = 0; e < nn; e++) {
+        const double *fj = tab + e * (size_t)nc;
+        double *a = K + (size_t)col[e] * nd2, jx = fj[1], jy = fj[2];
+        a[0] += ix * jx;
+        a[1] += ix * jy;
+        a[2] += iy * jx;
+        a[3] += iy * jy;
+      }
+    } else if (f->physics == MFS_PHYS_PLANE_STRAIN) { /* B_I^T D B_J */
       double c0 = f->c[0], c1 = f->c[1], c2 = f->c[2];
       double ix = fi[1], iy = fi[2];
       for (size_t e = 0; e < nn; e++) {
@@ -158,6 +237,8 @@ static inline int add_point(mfs_row *r, const mfs_plan *pl, const mfs_forms *f, 
       r->M[col[e]] -= beta * w * lapI * fk[0];
     }
   }
+  if (f->euler != MFS_EULER_NONE && r->gsz == 4)
+    return add_euler_2d(r, pl, f, I, pt, iI, col);
   if (f->euler == MFS_EULER_PAPER) {
     /* kernel motion, phi_I''(Q) (u~_Q - u~_I): eqs 71, 89-92 */
     const mfs_particles *p = mfs_plan_particles(pl);
@@ -242,7 +323,8 @@ mfs_status mfs_row_assemble(mfs_row *r, const mfs_plan *pl, const mfs_forms *f, 
         if (r->M)
           r->M[s] = 0.0;
         if (r->G)
-          r->G[s] = 0.0;
+          for (int k = 0; k < r->gsz; k++)
+            r->G[s * (size_t)r->gsz + k] = 0.0;
       }
       col[e] = r->mark[J];
     }
@@ -256,13 +338,14 @@ void mfs_row_sort(mfs_row *r)
   const int nd2 = r->ndof * r->ndof;
   for (size_t e = 1; e < r->len; e++) { /* insertion sort: rows are short */
     int c = r->col[e];
-    double k[4] = {0, 0, 0, 0}, m = 0.0, g = 0.0;
+    const int gs = r->gsz;
+    double k[4] = {0, 0, 0, 0}, m = 0.0, g[4] = {0, 0, 0, 0};
     if (r->K)
       memcpy(k, r->K + e * nd2, nd2 * sizeof *k);
     if (r->M)
       m = r->M[e];
     if (r->G)
-      g = r->G[e];
+      memcpy(g, r->G + e * gs, gs * sizeof *g);
     size_t s = e;
     for (; s > 0 && r->col[s - 1] > c; s--) {
       r->col[s] = r->col[s - 1];
@@ -271,7 +354,7 @@ void mfs_row_sort(mfs_row *r)
       if (r->M)
         r->M[s] = r->M[s - 1];
       if (r->G)
-        r->G[s] = r->G[s - 1];
+        memcpy(r->G + s * gs, r->G + (s - 1) * gs, gs * sizeof *g);
     }
     r->col[s] = c;
     if (r->K)
@@ -279,7 +362,7 @@ void mfs_row_sort(mfs_row *r)
     if (r->M)
       r->M[s] = m;
     if (r->G)
-      r->G[s] = g;
+      memcpy(r->G + s * gs, g, gs * sizeof *g);
   }
   for (size_t s = 0; s < r->len; s++)
     r->mark[r->col[s]] = (int)s;

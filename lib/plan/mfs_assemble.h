@@ -14,6 +14,15 @@
  *   Eulerian, paper          G_IJ = sum_Q w_Q phi_I''(Q) (T_QJ - delta_IJ) with the
  *                            kernel motion of eqs 71, 89-92 (1D, mfs_dispersion.h)
  *   Eulerian, consistent     G_IJ = sum_Q w_Q [phi_I''(Q) T_QJ + d phi_I'(Q) / d x_J]
+ *   gradient products        A^{jl}_IJ = sum_Q w_Q d_j phi_I(Q) d_l phi_J(Q) (2 x 2 blocks
+ *                            in place of K; plane strain: a tangent contracts them)
+ *   2D Eulerian terms        G^{jk}_IJ = sum_Q w_Q (D^IQ_J)_jk (2 x 2 blocks) with
+ *                            D = H^I_Q (T_QJ - delta_IJ I) (paper) or
+ *                            D = d grad phi_I(Q) / d x_J + H^I_Q T_QJ (consistent),
+ *                            H^I_Q_jm = d_m d_j phi_I(Q), T_QJ the motion of the point:
+ *                            delta at a particle; at a stress or Gauss point
+ *                            F [phi_J I - u_J (x) grad phi_J], u_J = (I - F^-1)(x_J - x_I)
+ *                            (paper) or phi_J I (consistent); F = diag(stretch, stretch_y)
  *   least squares            K += beta sum_Q w phi_I'' phi_J'', M -= beta sum_Q w phi_I'' phi_J
  *                            (Beissel-Belytschko, eqs 104-107)
  *
@@ -48,8 +57,10 @@ typedef struct {
   double c[3];              /* scalar: c[0] = C; plane strain: lambda + 2 mu, lambda, mu */
   double density;           /* rho of the consistent mass M (0: no mass) */
   mfs_euler_form euler;     /* the Eulerian term G (1D scalar; the plan needs order 2) */
-  double stretch;           /* F of the Eulerian analysis (1 if 0) */
+  double stretch;           /* F of the Eulerian analysis (1 if 0); 2D: F_11 */
+  double stretch_y;         /* 2D: F_22 of the paper-style Eulerian term (1 if 0) */
   double ls_beta;           /* least-squares stabilization beta (0: none; order 2) */
+  int outer;                /* plane strain: K holds the gradient products A^{jl} */
 } mfs_forms;
 
 /* The stiffness forms of a material (K only). */
@@ -61,7 +72,8 @@ typedef struct {
   int *col;       /* len particle indices, in order of first appearance */
   double *K;      /* len * ndof^2: the stiffness block of each column, row-major */
   double *M;      /* len: consistent mass (if the forms have a density) */
-  double *G;      /* len: the Eulerian term (if the forms have one) */
+  double *G;      /* len * gsz: the Eulerian term (if the forms have one) */
+  int gsz;        /* doubles of G per column: 1 (1D), 4 (2D plane strain, row-major 2 x 2) */
   /* private */
   int ndof;
   size_t cap;
@@ -74,12 +86,14 @@ typedef struct {
   int nc, dim;
   mfs_eval ev;    /* consistent Eulerian form: the point's offsets */
   int *eidx;
-  double *dphi, *dgrad;
+  double *dphi, *dgrad, *dwork;
 } mfs_row;
 
 /* A row for plan pl and forms f.  MFS_OK, MFS_EINVAL (forms the plan's table
- * cannot give: second derivatives for the Eulerian and least-squares terms),
- * MFS_ENOMEM. */
+ * cannot give: second derivatives for the Eulerian and least-squares terms;
+ * Eulerian terms other than 1D scalar or 2D plane strain; the outer form
+ * without plane strain), MFS_ENOTSUP (the consistent term for a shape without
+ * position derivatives), MFS_ENOMEM. */
 mfs_status mfs_row_init(mfs_row *r, const mfs_plan *pl, const mfs_forms *f);
 void mfs_row_free(mfs_row *r);
 

@@ -6,6 +6,8 @@
 #include <string.h>
 
 #include "mfs_bound.h"
+#include "mfs_eval.h"
+#include "mfs_neighbor.h"
 #include "mfs_status.h"
 
 struct mfs_solver2d_work {
@@ -13,13 +15,45 @@ struct mfs_solver2d_work {
   double *ku, *kv; /* 4n each: RK stage derivatives */
   double *tu;      /* n: stage displacement */
   int *comp;       /* n: s->comp */
+  /* the initially stressed (nonlinear) plate */
+  double sig0[4];        /* sigma0, 2 x 2 (Pa) */
+  double lam, mu;        /* Lame constants (Pa) */
+  const size_t *tptr;    /* the model's shape table at the reference points */
+  const int *tidx;
+  const double *tab;
+  int nc;
+  double *uf, *ff;       /* 2 np: full displacement and internal force */
+  double *f0;            /* n: the internal force at u = 0 (applied as a load) */
+  /* Eulerian kernel */
+  mfs_eval ev;           /* shape functions at the current positions */
+  double *x, *xq;        /* 2 np, 2 nq: current positions */
+  double *xb, *xqb;      /* at the last neighbour search */
+  mfs_nlist *cand;       /* candidates within a + skin */
+  size_t cap;
+  double *out;
+  int *loc;
+  double a, skin;
 };
 
 enum { POWER_ITERATIONS = 300 };
 
-/* a = -M^-1 K u; MFS_EDOMAIN if some a_i is not finite. */
-static int accel(const mfs_solver2d *s, const double *u, double *a)
+static int force_nl(mfs_solver2d *s, const double *u, double *f);
+
+/* a = -M^-1 K u (linear) or M^-1 (f_int(0) - f_int(u)) (initially stressed);
+ * MFS_EDOMAIN if some a_i is not finite. */
+static int accel(mfs_solver2d *s, const double *u, double *a)
 {
+  if (s->stressed) {
+    int st = force_nl(s, u, a);
+    if (st != MFS_OK)
+      return st;
+    int bad = 0;
+    for (size_t i = 0; i < s->n; i++) {
+      a[i] = -(a[i] - s->w->f0[i]) / s->m[i];
+      bad |= !isfinite(a[i]);
+    }
+    return bad ? MFS_EDOMAIN : MFS_OK;
+  }
   mfs_csr_matvec(s->model->K, u, a);
   int bad = 0;
   for (size_t i = 0; i < s->n; i++) {
@@ -27,6 +61,244 @@ static int accel(const mfs_solver2d *s, const double *u, double *a)
     bad |= !isfinite(a[i]);
   }
   return bad ? MFS_EDOMAIN : MFS_OK;
+}
+
+
+/* ---- the initially stressed plate (mfs_solver2d.h) ---- */
+
+/* S = sigma0 + lambda tr(E) I + 2 mu E, E = (F^T F - I)/2 = (H + H^T + H^T H)/2 from
+ * H = F - I (2 x 2, plane strain; written in H: no cancellation for small strains). */
+static void svk(const mfs_solver2d_work *w, const double *H, double *S, double *E)
+{
+  E[0] = H[0] + 0.5 * (H[0] * H[0] + H[2] * H[2]);
+  E[1] = E[2] = 0.5 * (H[1] + H[2] + H[0] * H[1] + H[2] * H[3]);
+  E[3] = H[3] + 0.5 * (H[1] * H[1] + H[3] * H[3]);
+  double tr = E[0] + E[3];
+  for (int i = 0; i < 4; i++)
+    S[i] = w->sig0[i] + 2.0 * w->mu * E[i] + (i == 0 || i == 3 ? w->lam * tr : 0.0);
+}
+
+/* The full displacement of the free dofs u (fixed particles at rest). */
+static void full(const mfs_solver2d *s, const double *u, double *uf)
+{
+  memset(uf, 0, 2 * s->model->p->n * sizeof *uf);
+  for (size_t i = 0; i < s->n; i++)
+    uf[s->model->dof[i]] = u[i];
+}
+
+/* Lagrangian kernel: F_Q = I + sum_K u_K (x) grad0 phi_K(X_Q), P = F S,
+ * f_K = sum_Q w_Q P grad0 phi_K. */
+static int force_lagrangian(mfs_solver2d *s, const double *uf, double *ff)
+{
+  mfs_solver2d_work *w = s->w;
+  const mfs_quad *q = s->model->q;
+  const int nc = w->nc;
+  for (size_t Q = 0; Q < q->n; Q++) {
+    double H[4] = {0.0, 0.0, 0.0, 0.0}; /* F - I */
+    for (size_t e = w->tptr[Q]; e < w->tptr[Q + 1]; e++) {
+      const double *t = w->tab + e * (size_t)nc, *uk = uf + 2 * (size_t)w->tidx[e];
+      H[0] += uk[0] * t[1];
+      H[1] += uk[0] * t[2];
+      H[2] += uk[1] * t[1];
+      H[3] += uk[1] * t[2];
+    }
+    double S[4], E[4], P[4]; /* P = F S = S + H S */
+    svk(w, H, S, E);
+    P[0] = S[0] + H[0] * S[0] + H[1] * S[2];
+    P[1] = S[1] + H[0] * S[1] + H[1] * S[3];
+    P[2] = S[2] + H[2] * S[0] + H[3] * S[2];
+    P[3] = S[3] + H[2] * S[1] + H[3] * S[3];
+    double wq = q->w[Q];
+    for (size_t e = w->tptr[Q]; e < w->tptr[Q + 1]; e++) {
+      const double *t = w->tab + e * (size_t)nc;
+      double *fk = ff + 2 * (size_t)w->tidx[e];
+      fk[0] += wq * (P[0] * t[1] + P[1] * t[2]);
+      fk[1] += wq * (P[2] * t[1] + P[3] * t[2]);
+    }
+  }
+  return MFS_OK;
+}
+
+/* Neighbour candidates of the current quadrature points within a + skin. */
+static int search(mfs_solver2d *s)
+{
+  mfs_solver2d_work *w = s->w;
+  const mfs_particles *p = s->model->p;
+  const mfs_quad *q = s->model->q;
+  mfs_status st;
+  mfs_grid *g = mfs_grid_alloc(2, p->n, w->x, &p->box, w->a + w->skin, &st);
+  if (!g)
+    return st;
+  mfs_nlist *nl = mfs_nlist_build(g, q->n, w->xq, w->a + w->skin, &st);
+  mfs_grid_free(g);
+  if (!nl)
+    return st;
+  mfs_nlist_free(w->cand);
+  w->cand = nl;
+  size_t maxrow = 1;
+  for (size_t Q = 0; Q < q->n; Q++) {
+    size_t len = nl->ptr[Q + 1] - nl->ptr[Q];
+    maxrow = len > maxrow ? len : maxrow;
+  }
+  if (maxrow > w->cap) {
+    size_t cap = 2 * maxrow;
+    double *o = realloc(w->out, 3 * cap * sizeof *o);
+    if (o)
+      w->out = o;
+    int *l = o ? realloc(w->loc, cap * sizeof *l) : NULL;
+    if (!l || mfs_eval_reserve(&w->ev, cap) != MFS_OK)
+      return MFS_ENOMEM;
+    w->loc = l;
+    w->cap = cap;
+  }
+  memcpy(w->xb, w->x, 2 * p->n * sizeof *w->x);
+  memcpy(w->xqb, w->xq, 2 * q->n * sizeof *w->xq);
+  s->searches++;
+  return MFS_OK;
+}
+
+/* Current positions: particles X + u; points at particles with them, other
+ * points with the interpolated displacement sum_K phi_K(X_Q) u_K (the
+ * reference table); search again when something moved more than skin/2. */
+static int eulerian_positions(mfs_solver2d *s, const double *uf)
+{
+  mfs_solver2d_work *w = s->w;
+  const mfs_particles *p = s->model->p;
+  const mfs_quad *q = s->model->q;
+  double moved = 0.0;
+  int finite = 1;
+  for (size_t i = 0; i < 2 * p->n; i++) {
+    w->x[i] = p->x[i] + uf[i];
+    finite &= isfinite(w->x[i]);
+  }
+  for (size_t I = 0; I < p->n; I++) {
+    double d[3];
+    mfs_box_delta(&p->box, w->xb + 2 * I, w->x + 2 * I, d);
+    moved = fmax(moved, hypot(d[0], d[1]));
+  }
+  for (size_t Q = 0; Q < q->n; Q++) {
+    double uq[2] = {0.0, 0.0};
+    if (q->node[Q] >= 0) {
+      uq[0] = uf[2 * (size_t)q->node[Q]];
+      uq[1] = uf[2 * (size_t)q->node[Q] + 1];
+    } else {
+      for (size_t e = w->tptr[Q]; e < w->tptr[Q + 1]; e++) {
+        double ph = w->tab[e * (size_t)w->nc];
+        uq[0] += ph * uf[2 * (size_t)w->tidx[e]];
+        uq[1] += ph * uf[2 * (size_t)w->tidx[e] + 1];
+      }
+    }
+    w->xq[2 * Q] = q->x[2 * Q] + uq[0];
+    w->xq[2 * Q + 1] = q->x[2 * Q + 1] + uq[1];
+    finite &= isfinite(w->xq[2 * Q]) && isfinite(w->xq[2 * Q + 1]);
+    double d[3];
+    mfs_box_delta(&p->box, w->xqb + 2 * Q, w->xq + 2 * Q, d);
+    moved = fmax(moved, hypot(d[0], d[1]));
+  }
+  if (!finite)
+    return MFS_EDOMAIN;
+  if (!w->cand || moved > 0.5 * w->skin)
+    return search(s);
+  return MFS_OK;
+}
+
+/* Eulerian kernel: shape functions at the current points among the current
+ * particles (radius a = D dx, sph volumes the reference ones: phi_I is a
+ * fixed function of x - x_I); F_Q^-1 = I - sum_K u_K (x) grad phi_K(x_Q)
+ * (eq. 68 in 2D), sigma = J^-1 F S F^T, V_Q = J w_Q, f_K = sum_Q V_Q sigma grad phi_K. */
+static int force_eulerian(mfs_solver2d *s, const double *uf, double *ff)
+{
+  mfs_solver2d_work *w = s->w;
+  const mfs_particles *p = s->model->p;
+  const mfs_quad *q = s->model->q;
+  int st = eulerian_positions(s, uf);
+  if (st != MFS_OK)
+    return st;
+  const mfs_nlist *cl = w->cand;
+  for (size_t Q = 0; Q < q->n; Q++) {
+    int nn;
+    size_t e0 = cl->ptr[Q];
+    st = mfs_eval_point(&w->ev, w->xq + 2 * Q, w->x, p->vol, cl->idx + e0, cl->ptr[Q + 1] - e0,
+                        q->node[Q], w->loc, w->out, &nn, NULL);
+    if (st != MFS_OK)
+      return st;
+    double G[4] = {0.0, 0.0, 0.0, 0.0}; /* grad_x u: F^-1 = I - G */
+    for (int k = 0; k < nn; k++) {
+      const double *t = w->out + 3 * k, *uk = uf + 2 * (size_t)w->loc[k];
+      G[0] += uk[0] * t[1];
+      G[1] += uk[0] * t[2];
+      G[2] += uk[1] * t[1];
+      G[3] += uk[1] * t[2];
+    }
+    double Fi[4] = {1.0 - G[0], -G[1], -G[2], 1.0 - G[3]};
+    double di = Fi[0] * Fi[3] - Fi[1] * Fi[2];
+    if (!(di > 0.0))
+      return MFS_EDOMAIN; /* an inverted configuration */
+    double F[4] = {Fi[3] / di, -Fi[1] / di, -Fi[2] / di, Fi[0] / di}, J = 1.0 / di;
+    double H[4] = {F[0] * G[0] + F[1] * G[2], F[0] * G[1] + F[1] * G[3], /* F - I = F G */
+                   F[2] * G[0] + F[3] * G[2], F[2] * G[1] + F[3] * G[3]};
+    double S[4], E[4], FS[4], sg[4];
+    svk(w, H, S, E);
+    FS[0] = F[0] * S[0] + F[1] * S[2];
+    FS[1] = F[0] * S[1] + F[1] * S[3];
+    FS[2] = F[2] * S[0] + F[3] * S[2];
+    FS[3] = F[2] * S[1] + F[3] * S[3];
+    sg[0] = (FS[0] * F[0] + FS[1] * F[1]) / J;
+    sg[1] = (FS[0] * F[2] + FS[1] * F[3]) / J;
+    sg[2] = (FS[2] * F[0] + FS[3] * F[1]) / J;
+    sg[3] = (FS[2] * F[2] + FS[3] * F[3]) / J;
+    double V = q->w[Q] * J;
+    for (int k = 0; k < nn; k++) {
+      const double *t = w->out + 3 * k;
+      double *fk = ff + 2 * (size_t)w->loc[k];
+      fk[0] += V * (sg[0] * t[1] + sg[1] * t[2]);
+      fk[1] += V * (sg[2] * t[1] + sg[3] * t[2]);
+    }
+  }
+  return MFS_OK;
+}
+
+/* The internal force on the free dofs. */
+static int force_nl(mfs_solver2d *s, const double *u, double *f)
+{
+  mfs_solver2d_work *w = s->w;
+  full(s, u, w->uf);
+  memset(w->ff, 0, 2 * s->model->p->n * sizeof *w->ff);
+  int st = s->model->spec.disc.frame == MFS_FRAME_EULERIAN ? force_eulerian(s, w->uf, w->ff)
+                                                           : force_lagrangian(s, w->uf, w->ff);
+  if (st != MFS_OK)
+    return st;
+  for (size_t i = 0; i < s->n; i++)
+    f[i] = w->ff[s->model->dof[i]];
+  return MFS_OK;
+}
+
+/* Strain energy of the Lagrangian plate, sum_Q w_Q (sigma0:E + lambda/2 tr(E)^2 + mu E:E),
+ * minus the work of the load f0 (dpsi/dE = S). */
+static double energy_lagrangian(mfs_solver2d *s, const double *u)
+{
+  mfs_solver2d_work *w = s->w;
+  const mfs_quad *q = s->model->q;
+  full(s, u, w->uf);
+  double e = 0.0;
+  for (size_t Q = 0; Q < q->n; Q++) {
+    double H[4] = {0.0, 0.0, 0.0, 0.0};
+    for (size_t ee = w->tptr[Q]; ee < w->tptr[Q + 1]; ee++) {
+      const double *t = w->tab + ee * (size_t)w->nc, *uk = w->uf + 2 * (size_t)w->tidx[ee];
+      H[0] += uk[0] * t[1];
+      H[1] += uk[0] * t[2];
+      H[2] += uk[1] * t[1];
+      H[3] += uk[1] * t[2];
+    }
+    double S[4], E[4];
+    svk(w, H, S, E);
+    double tr = E[0] + E[3], EE = E[0] * E[0] + 2.0 * E[1] * E[1] + E[3] * E[3];
+    double s0E = w->sig0[0] * E[0] + 2.0 * w->sig0[1] * E[1] + w->sig0[3] * E[3];
+    e += q->w[Q] * (s0E + 0.5 * w->lam * tr * tr + w->mu * EE);
+  }
+  for (size_t i = 0; i < s->n; i++)
+    e -= w->f0[i] * u[i];
+  return e;
 }
 
 /* lambda_max of B = M^-1/2 K M^-1/2 (the eigenvalues of M^-1 K) from below:
@@ -72,18 +344,85 @@ void mfs_solver2d_free(mfs_solver2d *s)
     return;
   mfs_model_free(s->model);
   free(s->u); /* the block of every vector */
-  if (s->w)
-    free(s->w->comp);
+  if (s->w) {
+    mfs_solver2d_work *w = s->w;
+    free(w->comp);
+    free(w->uf); /* the block of the stressed plate's vectors */
+    mfs_eval_free(&w->ev);
+    mfs_nlist_free(w->cand);
+    free(w->out);
+    free(w->loc);
+  }
   free(s->w);
   free(s);
 }
 
 mfs_solver2d *mfs_solver2d_alloc(const mfs_model_spec *spec, mfs_status *status, size_t *bad)
 {
+  return mfs_solver2d_alloc_stressed(spec, NULL, 0.0, status, bad);
+}
+
+/* The stressed plate's work: the reference table, the load, the Eulerian buffers. */
+static mfs_status stressed_init(mfs_solver2d *s, const double *sigma0, double skin)
+{
+  mfs_solver2d_work *w = s->w;
+  const mfs_model *md = s->model;
+  const mfs_particles *p = md->p;
+  const mfs_quad *q = md->q;
+  w->sig0[0] = sigma0[0];
+  w->sig0[1] = w->sig0[2] = sigma0[2];
+  w->sig0[3] = sigma0[1];
+  w->mu = md->mat.modulus;
+  w->lam = mfs_material_lambda(&md->mat);
+  mfs_plan_table(md->pl, &w->tptr, &w->tidx, &w->tab);
+  w->nc = mfs_plan_ncomp(md->pl);
+  size_t np = p->n, nq = q->n;
+  int euler = md->spec.disc.frame == MFS_FRAME_EULERIAN;
+  /* one block: uf ff (2 np each), f0 (n), and for the Eulerian kernel x xb (2 np each), xq xqb (2 nq each) */
+  size_t len = 4 * np + s->n + (euler ? 4 * np + 4 * nq : 0);
+  double *blk = calloc(len ? len : 1, sizeof *blk);
+  if (!blk)
+    return MFS_ENOMEM;
+  w->uf = blk;
+  w->ff = blk + 2 * np;
+  w->f0 = blk + 4 * np;
+  if (euler) {
+    w->x = w->f0 + s->n;
+    w->xb = w->x + 2 * np;
+    w->xq = w->xb + 2 * np;
+    w->xqb = w->xq + 2 * nq;
+    w->a = md->a;
+    w->skin = (skin > 0.0 ? skin : 0.5) * md->dx;
+    mfs_status st = mfs_eval_init(&w->ev, &md->spec.disc, w->a, 1, &p->box, 16);
+    if (st != MFS_OK)
+      return st;
+  }
+  s->stressed = 1;
+  /* the load that makes u = 0 an equilibrium (zero to rounding on a periodic lattice) */
+  double *zero = s->w->tu;
+  memset(zero, 0, s->n * sizeof *zero);
+  return force_nl(s, zero, w->f0);
+}
+
+mfs_solver2d *mfs_solver2d_alloc_stressed(const mfs_model_spec *spec, const double *sigma0,
+                                          double skin, mfs_status *status, size_t *bad)
+{
   mfs_status st = MFS_EINVAL;
   mfs_solver2d *s = NULL;
-  if (!spec || spec->disc.consistent_mass)
+  if (!spec || spec->disc.consistent_mass || !(skin >= 0.0))
     goto fail;
+  int stressed = spec->disc.frame != MFS_FRAME_LAGRANGIAN ||
+                 (sigma0 && (sigma0[0] != 0.0 || sigma0[1] != 0.0 || sigma0[2] != 0.0));
+  if (stressed) {
+    st = MFS_ENOTSUP;
+    if (spec->disc.material.physics != MFS_PHYS_PLANE_STRAIN || spec->disc.dim != 2 ||
+        spec->disc.frame == MFS_FRAME_EULERIAN_CONSISTENT)
+      goto fail;
+    st = MFS_EINVAL;
+    for (int k = 0; k < 3; k++)
+      if (!isfinite(sigma0 ? sigma0[k] : 0.0))
+        goto fail;
+  }
   st = MFS_ENOMEM;
   if (!(s = calloc(1, sizeof *s)) || !(s->w = calloc(1, sizeof *s->w)))
     goto fail;
@@ -129,6 +468,13 @@ mfs_solver2d *mfs_solver2d_alloc(const mfs_model_spec *spec, mfs_status *status,
   if (isnan(lam)) {
     st = MFS_EDOMAIN;
     goto fail;
+  }
+  if (stressed) {
+    double sx = sigma0 ? sigma0[0] : 0.0, sy = sigma0 ? sigma0[1] : 0.0, t = sigma0 ? sigma0[2] : 0.0;
+    double smax = 0.5 * fabs(sx + sy) + hypot(0.5 * (sx - sy), t); /* largest principal |sigma0| */
+    lam *= 1.0 + smax / md->mat.modulus;
+    if ((st = stressed_init(s, sigma0 ? sigma0 : (const double[3]){0, 0, 0}, skin)) != MFS_OK)
+      goto fail;
   }
   s->lambda = lam;
   s->dt_crit = mfs_dt_crit(lam); /* eq. 120 */
@@ -187,10 +533,20 @@ mfs_status mfs_solver2d_step(mfs_solver2d *s, mfs_scheme scheme)
   return st;
 }
 
-void mfs_solver2d_energy(const mfs_solver2d *s, double *kinetic, double *potential,
-                         double *modified)
+void mfs_solver2d_energy(mfs_solver2d *s, double *kinetic, double *potential, double *modified)
 {
   double k = 0.0, p = 0.0, aa = 0.0;
+  if (s->stressed) {
+    for (size_t i = 0; i < s->n; i++)
+      k += s->m[i] * s->v[i] * s->v[i];
+    if (kinetic)
+      *kinetic = 0.5 * k;
+    if (potential)
+      *potential = s->model->spec.disc.frame == MFS_FRAME_LAGRANGIAN ? energy_lagrangian(s, s->u) : NAN;
+    if (modified)
+      *modified = NAN;
+    return;
+  }
   for (size_t i = 0; i < s->n; i++) {
     double mi = s->m[i];
     k += mi * s->v[i] * s->v[i];

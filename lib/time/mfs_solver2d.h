@@ -36,7 +36,33 @@
  *   H = 1/2 v^T M v + 1/2 u^T K u - dt^2/8 a^T M a,   a = -M^-1 K u,
  * which is 1/2 v_{n-1/2}^T M v_{n+1/2} + 1/2 u_n^T K u_n, the energy with
  * the kinetic part from the half-step velocities v_{n+-1/2} = v_n +- dt/2 a_n;
- * E >= H oscillates above it by O((omega dt)^2) of the excited frequencies. */
+ * E >= H oscillates above it by O((omega dt)^2) of the excited frequencies.
+ *
+ * Initially stressed plates (mfs_solver2d_alloc_stressed; plane strain): a
+ * homogeneous initial Cauchy stress sigma0 and the St Venant-Kirchhoff
+ * material with it, S = sigma0 + lambda tr(E) I + 2 mu E (the 2D form of the
+ * rod's S = E (F^2 - 1)/2 + S0, mfs_solver.h), integrated as the nonlinear
+ *   M u'' = f_int(0) - f_int(u)
+ * (the load f_int(0) makes u = 0 an equilibrium; it vanishes to rounding on a
+ * periodic lattice).  Its linearization at u = 0 has the tangent
+ * a = c + delta (x) sigma0 of the dispersion analysis (mfs_dispersion.h).
+ *   Lagrangian kernel: the model's table at the reference points,
+ *     F_Q = I + sum_K u_K (x) grad0 phi_K(X_Q),  f_K = sum_Q w_Q F S grad0 phi_K;
+ *   Eulerian kernel: shape functions re-evaluated at the current points among
+ *     the current particles, radius a = D dx (sph: phi_I = V0_I W(x - x_I));
+ *     points at particles move with them, stress and Gauss points with
+ *     sum_K phi_K(X_Q) u_K;  F_Q^-1 = I - sum_K u_K (x) grad phi_K(x_Q) (eq. 68 in
+ *     2D), sigma = J^-1 F S F^T, V_Q = J w_Q,  f_K = sum_Q V_Q sigma grad phi_K.
+ *     Its linearization is the consistent one (`eulerian-consistent` of the
+ *     dispersion analysis; for sph with nodal integration also eq. 71's).
+ *     Candidate neighbours within a + skin, searched again when a point
+ *     moved more than skin/2 (counted in `searches`).
+ * The stable step comes from the unstressed K as above with lambda scaled by
+ * 1 + |sigma0|_max / mu (an estimate: the initial-stress terms of the
+ * linearized operator are O(sigma0/mu) of it).  Energy: kinetic always; the
+ * Lagrangian plate's potential sum_Q w_Q (sigma0:E + lambda/2 tr(E)^2 + mu E:E)
+ * - f_int(0).u (conserved by the exact dynamics); none (NAN) for the
+ * Eulerian kernel, which has no energy; the modified energy is NAN. */
 #ifndef MFS_SOLVER2D_H
 #define MFS_SOLVER2D_H
 
@@ -68,6 +94,8 @@ typedef struct {
   double lambda_bound; /* element bound (eq. 124); proven where negative_phi == 0 */
   size_t negative_phi; /* quadrature points where the bound is not guaranteed */
   long steps;
+  int stressed;        /* the initially stressed (nonlinear) plate */
+  long searches;       /* Eulerian neighbour searches */
   mfs_solver2d_work *w; /* private */
 } mfs_solver2d;
 
@@ -78,6 +106,17 @@ typedef struct {
  * *bad, if bad is not NULL), MFS_EDOMAIN (no positive finite lambda_max:
  * K = 0), MFS_ENOMEM. */
 mfs_solver2d *mfs_solver2d_alloc(const mfs_model_spec *spec, mfs_status *status, size_t *bad);
+
+/* The same under the homogeneous initial Cauchy stress sigma0 = (sigma_xx,
+ * sigma_yy, sigma_xy) in Pa (NULL: zero) with the kernel frame of
+ * spec->disc.frame (lagrangian or eulerian); skin: the Eulerian neighbour
+ * skin in dx (0: 0.5).  A Lagrangian plate without stress is the linear one.
+ * Further statuses: MFS_ENOTSUP (a stressed or Eulerian plate that is not
+ * plane strain; frame eulerian-consistent: the time-domain Eulerian kernel is
+ * `eulerian`, whose linearization that frame describes), MFS_EINVAL (a
+ * non-finite stress, skin < 0). */
+mfs_solver2d *mfs_solver2d_alloc_stressed(const mfs_model_spec *spec, const double *sigma0,
+                                          double skin, mfs_status *status, size_t *bad);
 void mfs_solver2d_free(mfs_solver2d *s);
 
 /* Back to u = v = a = 0, t = 0, steps = 0 (dt kept). */
@@ -93,14 +132,15 @@ mfs_status mfs_solver2d_set_state(mfs_solver2d *s, const double *u, const double
 mfs_status mfs_solver2d_set_dt(mfs_solver2d *s, double dt, int force);
 
 /* One step of the scheme.  MFS_OK; MFS_EINVAL for an unknown scheme;
- * MFS_EDOMAIN on a non-finite value (an unstable run that overflowed). */
+ * MFS_EDOMAIN on a non-finite value (an unstable run that overflowed) or an
+ * inverted configuration; the shape functions' status (MFS_ESINGULAR) and
+ * MFS_ENOMEM (a neighbour search) for the Eulerian kernel. */
 mfs_status mfs_solver2d_step(mfs_solver2d *s, mfs_scheme scheme);
 
 /* Kinetic 1/2 v^T M v and potential 1/2 u^T K u energies, and the modified
  * energy kinetic + potential - dt^2/8 a^T M a that the leapfrog conserves;
  * O(n) (K u = -M a is kept).  Any pointer may be NULL. */
-void mfs_solver2d_energy(const mfs_solver2d *s, double *kinetic, double *potential,
-                         double *modified);
+void mfs_solver2d_energy(mfs_solver2d *s, double *kinetic, double *potential, double *modified);
 
 /* Index of the particle nearest to (x, y) (y ignored in 1D; a periodic box
  * wraps the point into the box first), fixed particles included.  O(1). */

@@ -46,3 +46,11 @@ cmd eigs --dim 2 --nodes 15,13 --physics plane-strain --quadrature stress-quad -
 cmd eigs --dim 2 --nodes 14,14 --periodic --quadrature nodal --zero-modes
 cmd bound --dim 1 --nodes 101 --kernel quartic --dilation 2.3
 cmd bound --dim 2 --nodes 21,17 --quadrature gauss2 --physics plane-strain
+# issue 10: plane strain under stress and stretch, the map (references made by this code)
+cmd dispersion --dim 2 --physics plane-strain --quadrature stress-tri --stress 0.3 --stress-yy -0.2 \
+  --stress-xy 0.1 --frame eulerian-consistent --theta 0,30 --points 11
+cmd dispersion --dim 2 --physics plane-strain --material paper000 --stretch 1.1 --stretch-y 0.95 \
+  --quadrature stress-quad --frame eulerian --theta 0,45 --classify
+cmd map --material paper000 --stretch-range 0.8:1.3:4 --quadrature stress-tri \
+  --frame lagrangian,eulerian,eulerian-consistent
+cmd map --stress-range -1.2:0.6:4 --stress-xy 0.2 --quadrature nodal --shape sph --frame lagrangian,eulerian
