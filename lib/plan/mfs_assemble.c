@@ -41,6 +41,8 @@ mfs_status mfs_row_init(mfs_row *r, const mfs_plan *pl, const mfs_forms *f)
   int need2 = f->euler != MFS_EULER_NONE || f->ls_beta > 0.0;
   if (mfs_plan_order(pl) < (need2 ? 2 : 1))
     return MFS_EINVAL;
+  if (need2 && mfs_plan_disc(pl)->kernel->cusp) /* no second derivative at the cone */
+    return MFS_ENOTSUP;
   if (f->euler != MFS_EULER_NONE &&
       (mfs_plan_particles(pl)->dim != 1 || f->physics != MFS_PHYS_SCALAR))
     return MFS_EINVAL;

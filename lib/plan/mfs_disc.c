@@ -114,6 +114,9 @@ mfs_status mfs_disc_check(const mfs_disc *d, const char **field)
     BAD("quadrature");
   if ((unsigned)d->frame > MFS_FRAME_EULERIAN_CONSISTENT)
     BAD("frame");
+  /* the Eulerian terms need second derivatives, which a cusp lacks at r = 0 */
+  if (d->kernel->cusp && d->frame != MFS_FRAME_LAGRANGIAN)
+    BAD("frame");
   const mfs_material *m = &d->material;
   if (m->physics != MFS_PHYS_SCALAR && m->physics != MFS_PHYS_PLANE_STRAIN)
     BAD("material.physics");
