@@ -5,6 +5,7 @@
 /* core */
 #include "mfs_status.h"
 #include "mfs_kernel.h"
+#include "mfs_convention.h"
 #include "mfs_material.h"
 #include "mfs_shape.h"
 #include "mfs_particles.h"
