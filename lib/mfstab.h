@@ -11,6 +11,7 @@
 #include "mfs_particles.h"
 #include "mfs_neighbor.h"
 #include "mfs_voronoi.h"
+#include "mfs_delaunay.h"
 #include "mfs_quad.h"
 #include "mfs_csr.h"
 /* plan */
