@@ -511,8 +511,101 @@ static void test_errors(void)
   }
 }
 
+/* A particle set holding a lattice (its coordinates, and its volumes or
+ * none: the dual areas are the lattice's volumes) is the lattice model: the
+ * same lambda_max and zero-mode count to 1e-12. */
+static void check_set_is_lattice(mfs_model_spec s, int with_vol, const char *what)
+{
+  mfs_model *lat = build(&s, what);
+  if (!lat)
+    return;
+  mfs_point_set ps = {.dim = s.disc.dim, .n = lat->p->n, .x = lat->p->x,
+                      .vol = with_vol ? lat->p->vol : NULL};
+  unsigned char *mask = malloc(lat->p->n);
+  for (size_t I = 0; I < lat->p->n; I++)
+    mask[I] = lat->fixed[I];
+  mfs_model_spec t = s;
+  t.disc.source = (mfs_source){.lattice = MFS_LATTICE_POINTS, .points = &ps};
+  t.disc.support = lat->a;
+  if (s.fixed != MFS_FIX_NONE) {
+    t.fixed = MFS_FIX_MASK;
+    t.fix_mask = mask;
+  }
+  mfs_model *set = build(&t, what);
+  if (set) {
+    mfs_pencil P = {lat->K, lat->M, lat->m}, Q = {set->K, set->M, set->m};
+    double l1 = 0.0, l2 = 0.0;
+    mfs_eig_info info;
+    mfs_status st = mfs_eig_max(&P, NULL, &l1, NULL, &info);
+    st |= mfs_eig_max(&Q, NULL, &l2, NULL, &info);
+    CHECK(st == MFS_OK && set->n == lat->n, "%s: eig %s, dofs %zu/%zu", what, mfs_strerror(st),
+          set->n, lat->n);
+    CHECK_NEAR(l2 / l1, 1.0, 1e-12, "%s (%s volumes): lambda_max of the set vs the lattice",
+               what, with_vol ? "the lattice's" : "dual");
+    mfs_zero_opts zo = {1e-8, 0, 0, 0};
+    mfs_zero_modes z1, z2;
+    st = mfs_eig_zero_modes(&P, l1, &zo, NULL, &z1, &info);
+    st |= mfs_eig_zero_modes(&Q, l2, &zo, NULL, &z2, &info);
+    CHECK(st == MFS_OK && z1.count == z2.count, "%s: zero modes %d (set) vs %d (lattice)", what,
+          z2.count, z1.count);
+    CHECK(mfs_model_rigid_fields(set, NULL) == mfs_model_rigid_fields(lat, NULL),
+          "%s: rigid fields", what);
+    mfs_bound_result b1, b2;
+    mfs_bound_model(&s, &b1, NULL);
+    mfs_bound_model(&t, &b2, NULL);
+    CHECK_NEAR(b2.lambda / b1.lambda, 1.0, 1e-12, "%s: element bound of the set vs the lattice",
+               what);
+    mfs_model_free(set);
+  }
+  free(mask);
+  mfs_model_free(lat);
+}
+
+static void test_point_sets(void)
+{
+  mfs_model_spec s = spec1(31, 2.3, "nodal");
+  check_set_is_lattice(s, 1, "1D free nodal");
+  check_set_is_lattice(s, 0, "1D free nodal");
+  s.fixed = MFS_FIX_ENDS;
+  s.disc.kernel = &mfs_kernel_quartic;
+  check_set_is_lattice(s, 1, "1D fixed nodal quartic");
+  s = spec2(13, 11, 2.1, "nodal");
+  check_set_is_lattice(s, 1, "2D free nodal");
+  check_set_is_lattice(s, 0, "2D free nodal");
+  s.fixed = MFS_FIX_BOUNDARY;
+  s.disc.consistent_mass = 1;
+  check_set_is_lattice(s, 1, "2D fixed nodal consistent");
+  s = spec2(10, 9, 2.0, "nodal");
+  s.disc.material.physics = MFS_PHYS_PLANE_STRAIN;
+  s.disc.material.poisson = 0.3;
+  check_set_is_lattice(s, 1, "2D plane strain nodal");
+  s.disc.shape = &mfs_shape_rl;
+  check_set_is_lattice(s, 1, "2D plane strain nodal rl");
+  /* the 1D stress points of a set are those of the lattice */
+  s = spec1(31, 1.8, "stress");
+  check_set_is_lattice(s, 0, "1D free stress points");
+
+  /* a set with random positions: the bound through the plan is the table bound */
+  s = spec2(12, 12, 2.2, "gauss2");
+  s.disc.source.perturb = 0.3;
+  s.disc.source.seed = 11;
+  mfs_model *m = build(&s, "perturbed");
+  if (m) {
+    mfs_bound_result b1, b2;
+    mfs_bound_of_model(m, &b1);
+    mfs_bound_model(&s, &b2, NULL);
+    CHECK(b1.lambda == b2.lambda && b1.negative_phi == b2.negative_phi,
+          "perturbed lattice: bound %.17g vs streaming %.17g", b1.lambda, b2.lambda);
+    CHECK(fabs(m->p->x[2 * 30] - 6 * m->dx) > 1e-6 * m->dx && fabs(m->p->x[2 * 30] - 6 * m->dx) < 0.3 * m->dx, "the lattice moved, by less than 0.3 dx");
+    mfs_model_free(m);
+  }
+  s.disc.source.perturb = 0.5;
+  CHECK(mfs_model_spec_check(&s, NULL) == MFS_EINVAL, "perturbation 0.5 refused");
+}
+
 int main(void)
 {
+  test_point_sets();
   test_arpack_vs_dense();
   test_bloch();
   test_zero_modes();

@@ -89,8 +89,10 @@ mfs_status mfs_bound_plan(const mfs_plan *pl, const mfs_material *mat,
  * other, with the same neighbour offsets, volumes and fixed flags).  O(N)
  * time for N particles, O(N) memory for the particles and quadrature points
  * only.  Equals mfs_bound_plan on the assembled model up to rounding.
- * Returns MFS_OK, or the statuses of mfs_model_alloc (MFS_ESINGULAR with
- * *bad the failing quadrature point). */
+ * Particle sets, perturbed lattices and masks of fixed particles have no
+ * equivalent points: their bound goes through a plan and its shape table
+ * (O(N) time and memory).  Returns MFS_OK, or the statuses of
+ * mfs_model_alloc (MFS_ESINGULAR with *bad the failing quadrature point). */
 mfs_status mfs_bound_model(const mfs_model_spec *spec, mfs_bound_result *r, size_t *bad);
 
 /* The bound of an assembled model (its plan must not have been released). */
@@ -114,7 +116,9 @@ double mfs_bound_alpha_continuum(const mfs_kernel_type *k, int dim);
 #define MFS_PAPER_ALPHA2 15.00
 
 /* The Fourier (von Neumann) estimate: the largest omega^2 of plane waves on
- * the infinite uniform lattice with the spec's kernel, shape functions,
+ * the infinite uniform lattice (of a particle set: the line or square lattice
+ * of its mean spacing; of a perturbed lattice: the unperturbed one) with the
+ * spec's kernel, shape functions,
  * quadrature, dilation, mass and physics (mfs_dispersion.h), over kappa in
  * [0, kappa_max(theta)] sampled at npts points (then refined around the
  * largest sample by golden section), at nangles angles theta evenly
