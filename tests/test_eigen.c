@@ -10,6 +10,8 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include <stdio.h>
+
 #include "check.h"
 #include "mfstab.h"
 
@@ -81,6 +83,39 @@ static void check_max(const mfs_model_spec *s, const char *what)
   if (!s->disc.consistent_mass && b.negative_phi == 0)
     CHECK(b.lambda >= ref * (1.0 - 1e-12), "%s: bound %.10g below lambda_max %.10g", what,
           b.lambda, ref);
+
+  /* Gershgorin with the lumped mass: above lambda_max; the streamed rows equal the CSR */
+  if (!s->disc.consistent_mass) {
+    mfs_gershgorin_result g, gs;
+    st = mfs_gershgorin_csr(m->K, m->m, m->dof, &g);
+    CHECK(st == MFS_OK && g.nonpositive == 0, "%s: gershgorin %s, %zu masses <= 0", what,
+          mfs_strerror(st), g.nonpositive);
+    CHECK(g.lambda >= ref * (1.0 - 1e-12), "%s: gershgorin %.10g below lambda_max %.10g", what,
+          g.lambda, ref);
+    CHECK(g.lambda <= 2.0 * ref, "%s: gershgorin / lambda_max = %.4f > 2", what, g.lambda / ref);
+    printf("gershgorin/lambda_max %.4f  element bound/lambda_max %.4f%s  %s\n", g.lambda / ref,
+           b.lambda / ref, b.negative_phi ? " (not valid: phi < 0)" : "", what);
+    st = mfs_gershgorin_plan(m->pl, &m->mat, s->fixed != MFS_FIX_NONE ? m->fixed : NULL, &gs);
+    CHECK(st == MFS_OK && gs.argmax == g.argmax, "%s: streamed gershgorin %s, row %zu vs %zu",
+          what, mfs_strerror(st), gs.argmax, g.argmax);
+    CHECK_NEAR(gs.lambda / g.lambda, 1.0, 1e-13, "%s: streamed vs CSR gershgorin", what);
+  }
+  /* certification: sigma M - K factors at 1.001 lambda_max, not at 0.999 */
+  mfs_certificate c;
+  st = mfs_eig_certify(&P, 1.001 * ref, &c);
+  CHECK(st == MFS_OK && c.ok, "%s: certification fails at 1.001 lambda_max (%s)", what,
+        mfs_strerror(st));
+  CHECK(c.margin > 0.0 && c.margin < 1e-10, "%s: rounding margin %.3g (row %d)", what, c.margin,
+        c.max_row);
+  st = mfs_eig_certify(&P, 0.999 * ref, &c);
+  CHECK(st == MFS_OK && !c.ok, "%s: certification succeeds at 0.999 lambda_max", what);
+  mfs_certify_opts co = {.lambda_est = lam};
+  mfs_certify_result cr;
+  st = mfs_eig_certify_search(&P, &co, &cr);
+  CHECK(st == MFS_OK && cr.ok && cr.lambda_upper >= ref * (1.0 - 1e-13) &&
+          cr.lambda_upper <= ref * (1.0 + 1e-5),
+        "%s: search from the Lanczos value: ok %d sigma/lambda_max %.9f after %d", what, cr.ok,
+        cr.sigma / ref, cr.factorizations);
   free(w);
   mfs_model_free(m);
 }

@@ -624,3 +624,95 @@ double mfs_dt_crit(double lambda_max)
 {
   return 2.0 / sqrt(lambda_max);
 }
+
+/* ------------------------------------------------------------------ */
+/* Gershgorin                                                          */
+
+static void gersh_init(mfs_gershgorin_result *r)
+{
+  *r = (mfs_gershgorin_result){.lambda = 0.0, .min_mass = INFINITY};
+}
+
+/* Row i (full dof f) with absolute row sum s and mass mi. */
+static void gersh_row(mfs_gershgorin_result *r, double s, double mi, size_t f)
+{
+  if (mi < r->min_mass) {
+    r->min_mass = mi;
+    r->argmin_mass = f;
+  }
+  if (!(mi > 0.0)) {
+    if (r->nonpositive++ == 0)
+      r->first_nonpositive = f;
+    return;
+  }
+  double lam = s / mi;
+  if (lam > r->lambda) {
+    r->lambda = lam;
+    r->argmax = f;
+  }
+}
+
+static void gersh_finish(mfs_gershgorin_result *r)
+{
+  if (r->nonpositive > 0)
+    r->lambda = NAN;
+}
+
+mfs_status mfs_gershgorin_csr(const mfs_csr *K, const double *m, const size_t *dof,
+                              mfs_gershgorin_result *r)
+{
+  gersh_init(r);
+  if (!K || !m || K->nrow != K->ncol)
+    return MFS_EINVAL;
+  for (size_t i = 0; i < K->nrow; i++) {
+    double s = 0.0;
+    for (size_t e = K->ptr[i]; e < K->ptr[i + 1]; e++)
+      s += fabs(K->val[e]);
+    gersh_row(r, s, m[i], dof ? dof[i] : i);
+  }
+  gersh_finish(r);
+  return MFS_OK;
+}
+
+mfs_status mfs_gershgorin_plan(const mfs_plan *pl, const mfs_material *mat,
+                               const unsigned char *fixed, mfs_gershgorin_result *r)
+{
+  gersh_init(r);
+  if (!pl || !mat || mfs_plan_order(pl) < 1)
+    return MFS_EINVAL;
+  const mfs_particles *p = mfs_plan_particles(pl);
+  int ndof = mfs_physics_ndof(mat->physics), nd2 = ndof * ndof;
+  double *ml = malloc(p->n * (size_t)ndof * sizeof *ml);
+  if (!ml)
+    return MFS_ENOMEM;
+  mfs_status st = mfs_assemble_mass_lumped(pl, mat, ml);
+  mfs_forms f = mfs_forms_stiffness(mat);
+  mfs_row row;
+  if (st == MFS_OK)
+    st = mfs_row_init(&row, pl, &f);
+  if (st != MFS_OK) {
+    free(ml);
+    return st;
+  }
+  for (size_t I = 0; I < p->n && st == MFS_OK; I++) {
+    if (fixed && fixed[I])
+      continue;
+    st = mfs_row_assemble(&row, pl, &f, I);
+    for (int a = 0; a < ndof && st == MFS_OK; a++) {
+      double s = 0.0;
+      for (size_t c = 0; c < row.len; c++) {
+        if (fixed && fixed[row.col[c]])
+          continue;
+        const double *blk = row.K + c * (size_t)nd2 + (size_t)a * ndof;
+        for (int b = 0; b < ndof; b++)
+          s += fabs(blk[b]);
+      }
+      size_t dof = I * (size_t)ndof + (size_t)a;
+      gersh_row(r, s, ml[dof], dof);
+    }
+  }
+  mfs_row_free(&row);
+  free(ml);
+  gersh_finish(r);
+  return st;
+}
