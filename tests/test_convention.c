@@ -334,6 +334,21 @@ static void test_rules(void)
   r.poisson = 0.3;
   r.h = 0.0;
   CHECK(isnan(mfs_rule_dt(&mfs_rule_sphinxsys, &r, 0)), "h = 0 is refused (NAN)");
+  /* the length each rule takes under a convention */
+  const mfs_convention *lr = mfs_convention_find("lammps-smd-radius");
+  const mfs_convention *tq = mfs_convention_find("trixiparticles:SchoenbergQuinticSplineKernel");
+  const mfs_convention *sx = mfs_convention_find("sphinxsys");
+  double A = 0.3;
+  CHECK(mfs_rule_h(&mfs_rule_lammps_smd, lr, A) == A,
+        "LAMMPS radius preset: the rule's 2 radius is a (radius h = a/2)");
+  CHECK(mfs_rule_h(&mfs_rule_trixiparticles, tq, A) == A / 3.0,
+        "TrixiParticles quintic: the rule takes the smoothing length a/3");
+  CHECK(mfs_rule_h(&mfs_rule_trixiparticles, NULL, A) == A / 2.0,
+        "TrixiParticles without a convention: its example kernel WendlandC2, h = a/2");
+  CHECK(mfs_rule_h(&mfs_rule_sphinxsys_pwave, sx, A) == A / 2.0 &&
+          mfs_rule_of(&mfs_rule_sphinxsys_pwave, sx) && !mfs_rule_of(&mfs_rule_dualsphysics, sx),
+        "both SPHinXsys rules belong to the sphinxsys preset, DualSPHysics' does not");
+  CHECK(mfs_rule_h(&mfs_rule_lammps_smd, tq, A) == A, "LAMMPS under another peer's preset: h = a");
   int n = 0;
   for (; mfs_step_rules[n]; n++)
     ;

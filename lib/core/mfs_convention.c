@@ -91,25 +91,26 @@ double mfs_rule_dt(const mfs_step_rule *rule, const mfs_rule_args *args, double 
 static const mfs_convention lammps = {
   .name = "lammps-smd", .peer = "LAMMPS MACHDYN", .peer_kernel = "spiky_kernel_and_derivative",
   .kernel = &mfs_kernel_spiky, .support_per_h = 1.0, .dims = D2, .rule = &mfs_rule_lammps_smd,
-  .h_is = "the kernel diameter of 'set group all diameter h' (the examples' h): a = h"};
+  .rule_support_per_h = 1.0, .h_is = "the kernel diameter of 'set group all diameter h' (the examples' h): a = h"};
 static const mfs_convention lammps_radius = {
   .name = "lammps-smd-radius", .peer = "LAMMPS MACHDYN",
   .peer_kernel = "spiky_kernel_and_derivative", .kernel = &mfs_kernel_spiky,
-  .support_per_h = 2.0, .dims = D2, .rule = &mfs_rule_lammps_smd,
+  .support_per_h = 2.0, .dims = D2, .rule = &mfs_rule_lammps_smd, .rule_support_per_h = 1.0,
   .h_is = "the per-atom kernel radius (kernel-radius column of atom_style smd): a = 2h"};
 static const mfs_convention sphinxsys = {
   .name = "sphinxsys", .peer = "SPHinXsys", .peer_kernel = "KernelWendlandC2",
   .kernel = &mfs_kernel_wendland2, .support_per_h = 2.0, .dims = D1 | D2,
-  .rule = &mfs_rule_sphinxsys,
+  .rule = &mfs_rule_sphinxsys, .rule_support_per_h = 2.0,
   .h_is = "the reference smoothing length of SPHAdaptation (default 1.3 dp): a = 2h"};
 static const mfs_convention sphinxsys_cubic = {
   .name = "sphinxsys:KernelCubicBSpline", .peer = "SPHinXsys", .peer_kernel = "KernelCubicBSpline",
   .kernel = &mfs_kernel_cubic, .support_per_h = 2.0, .dims = D1 | D2, .rule = &mfs_rule_sphinxsys,
-  .h_is = "the reference smoothing length of SPHAdaptation: a = 2h"};
+  .rule_support_per_h = 2.0, .h_is = "the reference smoothing length of SPHAdaptation: a = 2h"};
 #define TRIXI(pk, k, s, d)                                                                     \
   static const mfs_convention trixi_##pk = {                                                   \
     .name = "trixiparticles:" #pk, .peer = "TrixiParticles.jl", .peer_kernel = #pk,            \
     .kernel = &mfs_kernel_##k, .support_per_h = s, .dims = d, .rule = &mfs_rule_trixiparticles, \
+    .rule_support_per_h = s,                                                                   \
     .h_is = "the smoothing_length of the system: a = compact_support(kernel, h)"}
 TRIXI(WendlandC2Kernel, wendland2, 2.0, D2);
 TRIXI(WendlandC4Kernel, wendland4, 2.0, D2);
@@ -123,7 +124,7 @@ TRIXI(Poly6Kernel, poly6, 1.0, D2);
 #define PYSPH(id, nm, pk, k, s, d)                                                            \
   static const mfs_convention pysph_##id = {                                                  \
     .name = nm, .peer = "PySPH", .peer_kernel = #pk, .kernel = &mfs_kernel_##k,               \
-    .support_per_h = s, .dims = d, .rule = NULL,                                              \
+    .support_per_h = s, .dims = d, .rule = NULL, .rule_support_per_h = s,                     \
     .h_is = "the particle array's h (symmetrized h_ij): a = radius_scale * h"}
 PYSPH(CubicSpline, "pysph", CubicSpline, cubic, 2.0, D1 | D2);
 PYSPH(CubicSplineNamed, "pysph:CubicSpline", CubicSpline, cubic, 2.0, D1 | D2);
@@ -136,12 +137,12 @@ PYSPH(QuinticSpline, "pysph:QuinticSpline", QuinticSpline, quintic, 3.0, D1 | D2
 static const mfs_convention dualsphysics = {
   .name = "dualsphysics", .peer = "DualSPHysics", .peer_kernel = "Wendland (Kernel 2)",
   .kernel = &mfs_kernel_wendland2, .support_per_h = 2.0, .dims = D2,
-  .rule = &mfs_rule_dualsphysics,
+  .rule = &mfs_rule_dualsphysics, .rule_support_per_h = 2.0,
   .h_is = "the final kernel h of the run log (KernelH = coefh sqrt(d) dp or hdp dp): a = 2h"};
 static const mfs_convention dualsphysics_cubic = {
   .name = "dualsphysics:CubicSpline", .peer = "DualSPHysics", .peer_kernel = "Cubic Spline (Kernel 1)",
   .kernel = &mfs_kernel_cubic, .support_per_h = 2.0, .dims = D2, .rule = &mfs_rule_dualsphysics,
-  .h_is = "the final kernel h of the run log: a = 2h"};
+  .rule_support_per_h = 2.0, .h_is = "the final kernel h of the run log: a = 2h"};
 
 const mfs_convention *const mfs_conventions[] = {
   &lammps, &lammps_radius, &sphinxsys, &sphinxsys_cubic,
@@ -163,6 +164,16 @@ const mfs_convention *mfs_convention_find(const char *name)
 double mfs_convention_support(const mfs_convention *c, double h)
 {
   return c->support_per_h * h;
+}
+
+int mfs_rule_of(const mfs_step_rule *rule, const mfs_convention *c)
+{
+  return rule && c && strncmp(rule->peer, c->peer, strlen(c->peer)) == 0;
+}
+
+double mfs_rule_h(const mfs_step_rule *rule, const mfs_convention *c, double a)
+{
+  return mfs_rule_of(rule, c) ? a / c->rule_support_per_h : a / rule->support_per_h;
 }
 
 int mfs_convention_applies(const mfs_convention *c, int dim)

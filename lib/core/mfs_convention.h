@@ -71,6 +71,9 @@ typedef struct {
   double support_per_h;          /* a = support_per_h * h */
   unsigned dims;                 /* bit d (1 << d): the peer defines W in dimension d */
   const mfs_step_rule *rule;     /* the peer's step rule, NULL if it has none for solids */
+  double rule_support_per_h;     /* a / (the length the peer's step rules take) with this
+                                    kernel: LAMMPS 1 (2 radius = a), the others the
+                                    smoothing length (support_per_h) */
   const char *h_is;              /* what the peer calls h */
 } mfs_convention;
 
@@ -82,6 +85,15 @@ const mfs_convention *mfs_convention_find(const char *name);
 
 /* The support radius of a preset for the peer's h: support_per_h * h. */
 double mfs_convention_support(const mfs_convention *c, double h);
+
+/* The length a step rule takes for a model of support radius a: under
+ * convention c (NULL: none) the peer's own rules (every rule of the same
+ * peer) take a / c->rule_support_per_h; any other rule takes its default
+ * kernel's a / rule->support_per_h. */
+double mfs_rule_h(const mfs_step_rule *rule, const mfs_convention *c, double a);
+
+/* 1 if rule is one of the step rules of the peer of convention c. */
+int mfs_rule_of(const mfs_step_rule *rule, const mfs_convention *c);
 
 /* 1 if the preset's peer defines its kernel in dimension dim. */
 int mfs_convention_applies(const mfs_convention *c, int dim);
