@@ -22,6 +22,7 @@ static const struct {
    "extreme eigenvalues, zero-energy modes and critical time step of a finite model"},
   {"bound", cmd_bound, "cheap element eigenvalue bound and critical time step (eqs 123-146)"},
   {"run", cmd_run, "explicit reference solver on a scene file (INI)"},
+  {"check", cmd_check, "check your own discretization: stability, modes and time steps you can trust"},
   {"reproduce", cmd_reproduce, "regenerate the reproduced tables and figures into notebooks-data/"},
 };
 enum { NCMDS = sizeof cmds / sizeof cmds[0] };
