@@ -125,6 +125,7 @@ static void test_lattice_as_points(void)
           "cells: %zu triangles", p->ncell);
     CHECK_NEAR(mfs_particles_domain_volume(p), 8 * 0.37 * 6 * 0.37 * 1.3, 1e-14,
                "domain volume");
+    CHECK_NEAR(p->dx, 0.37 * sqrt(1.3), 1e-15, "2D spacing: sqrt of the median volume, sqrt(dx dy)");
     mfs_particles_free(p);
   }
   /* with volumes and without cells: no triangulation */
@@ -178,7 +179,7 @@ static void test_quadrature(gsl_rng *r)
       CHECK_NEAR(p->vol[i], want[i], 1e-15, "1D volume %d", i);
     CHECK(p->flags[3] == MFS_BND_XLO && p->flags[5] == MFS_BND_XHI && p->flags[0] == 0,
           "1D ends flagged");
-    CHECK_NEAR(p->dx, 0.24, 1e-15, "1D mean spacing");
+    CHECK_NEAR(p->dx, 0.1875, 1e-15, "1D spacing: the median volume");
     mfs_quad *q = mfs_quad_alloc(&mfs_quad_stress, p, &st);
     double w = 0.0;
     for (size_t i = 0; q && i < q->n; i++)

@@ -217,7 +217,7 @@ int cmd_check(int argc, char **argv)
   if (cv)
     fprintf(o, " (%s: h = %.6g m, %s -> mfstab %s, a = %g h)", cv->name, c.m.smoothing_length,
             cv->peer_kernel, cv->kernel->name, cv->support_per_h);
-  fprintf(o, "; mean spacing %.6g m, a = %.4g dx\n", mfs_disc_dx(d), d->dilation);
+  fprintf(o, "; spacing %.6g m, a = %.4g dx\n", mfs_disc_dx(d), d->dilation);
   fprintf(o, "  material: E = %.6g Pa, nu = %.4g, rho = %.6g kg/m^3", c.young, c.poisson,
           d->material.density);
   if (d->dim == 2)

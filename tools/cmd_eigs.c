@@ -265,6 +265,7 @@ static void finish_file(model_cmd *c, mfs_disc *disc, const cli_group *dg, const
   if (cli_seen(mg, "--fix") && cli_seen(mg, "--fixed"))
     cli_die(2, "--fix with --fixed: fix groups (--fix) or the boundary (--fixed), not both");
   particle_file_read(&c->pf, o->particles, 1e-10);
+  particle_file_volumes(&c->pf);
   c->have_file = 1;
   if (cli_seen(dg, "--dim") && c->d.dim != c->pf.dim)
     cli_die(2, "--dim %ld: %s holds a %dD set (header %s)", c->d.dim, o->particles, c->pf.dim,

@@ -261,6 +261,28 @@ void particle_file_read(particle_file *pf, const char *path, double min_dist)
   }
 }
 
+void particle_file_volumes(particle_file *pf)
+{
+  if (!pf->vol) {
+    mfs_status st;
+    mfs_particles *p = mfs_particles_from_set(&pf->set, 0, &st);
+    if (!p && st == MFS_EDOMAIN)
+      cli_die(2, "%s: the particles have no Delaunay triangulation (all on a line?); give a volume "
+                 "column",
+              pf->path);
+    if (!p)
+      cli_die(1, "%s: %s", pf->path, mfs_strerror(st));
+    pf->vol = malloc(pf->n * sizeof *pf->vol);
+    if (!pf->vol)
+      cli_die(1, "out of memory");
+    memcpy(pf->vol, p->vol, pf->n * sizeof *pf->vol);
+    mfs_particles_free(p);
+    pf->dual_volumes = 1;
+    pf->set.vol = pf->vol;
+  }
+  pf->set.spacing = mfs_point_set_spacing(&pf->set);
+}
+
 void particle_file_free(particle_file *pf)
 {
   free(pf->x);

@@ -28,6 +28,7 @@ typedef struct {
   char **names;        /* ngroups labels, in order of first appearance */
   int ngroups;
   size_t *line;        /* n: the file line of each particle (the header is line 1) */
+  int dual_volumes;    /* the file had no volume column: vol holds the set's dual volumes */
   mfs_point_set set;   /* the arrays above, for the library */
 } particle_file;
 
@@ -35,6 +36,12 @@ typedef struct {
  * particles closer than min_dist times the mean spacing are duplicates
  * (an error naming both lines). */
 void particle_file_read(particle_file *pf, const char *path, double min_dist);
+
+/* Complete the set: without a volume column, the dual volumes of its
+ * intervals (1D) or Delaunay triangles (2D; dies naming the file when the
+ * particles have no triangulation), computed once; and its typical spacing
+ * (mfs_point_set_spacing) into pf->set.spacing. */
+void particle_file_volumes(particle_file *pf);
 void particle_file_free(particle_file *pf);
 
 /* The fix mask of "--fix A[,B...]": 1 for the particles of those groups

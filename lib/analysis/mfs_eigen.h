@@ -142,6 +142,7 @@ typedef struct {
   int ok;            /* the factorization ran to completion */
   double margin;     /* relative rounding margin of the proof (ok only) */
   double factor_nnz; /* entries of the supernodal factor */
+  double flops;      /* floating-point operations of one factorization (CHOLMOD's count) */
   int max_row;       /* k: the longest row of L */
 } mfs_certificate;
 
@@ -172,6 +173,7 @@ typedef struct {
                              lambda_max >= sigma_failed up to rounding */
   int factorizations;
   double factor_nnz;
+  double flops;           /* of one factorization */
 } mfs_certify_result;
 
 /* MFS_OK (r->ok 0 if no sigma was certified), MFS_EINVAL, MFS_ENOMEM. */

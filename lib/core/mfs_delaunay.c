@@ -36,7 +36,7 @@ mfs_status mfs_delaunay_2d(size_t n, const double *x, size_t *ntri, int **tri)
   memcpy(pts, x, 2 * n * sizeof *pts);
   qh_zero(qh, err);
   started = 1;
-  char flags[] = "qhull d Qt Qbb Qc Qz";
+  char flags[] = "qhull d Qt Qbb Qz"; /* no Qc: a point that is no vertex fails anyway */
   int code = qh_new_qhull(qh, 2, (int)n, pts, False, flags, NULL, err);
   st = MFS_EDOMAIN;
   if (code != 0)

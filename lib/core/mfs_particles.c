@@ -414,10 +414,13 @@ mfs_particles *mfs_particles_from_set(const mfs_point_set *s, int cells, mfs_sta
       if (!(p->vol[i] > 0.0))
         goto fail;
   }
-  double vs = 0.0;
-  for (size_t i = 0; i < n; i++)
-    vs += p->vol[i];
-  p->dx = dim == 1 ? (p->box.hi[0] - p->box.lo[0]) / (double)(n - 1) : sqrt(vs / (double)n);
+  if (s->spacing > 0.0) {
+    p->dx = s->spacing;
+  } else {
+    mfs_point_set t = *s;
+    t.vol = p->vol;
+    p->dx = mfs_point_set_spacing(&t);
+  }
   p->dy = dim == 1 ? 0.0 : p->dx;
   if (status)
     *status = MFS_OK;
@@ -427,6 +430,27 @@ fail:
   if (status)
     *status = st;
   return NULL;
+}
+
+static int cmp_double(const void *a, const void *b)
+{
+  double x = *(const double *)a, y = *(const double *)b;
+  return (x > y) - (x < y);
+}
+
+double mfs_point_set_spacing(const mfs_point_set *s)
+{
+  if (!s || !s->vol || s->n < 1)
+    return NAN;
+  double *v = malloc(s->n * sizeof *v);
+  if (!v)
+    return NAN;
+  memcpy(v, s->vol, s->n * sizeof *v);
+  qsort(v, s->n, sizeof *v, cmp_double);
+  size_t k = s->n / 2;
+  double med = s->n % 2 ? v[k] : 0.5 * (v[k - 1] + v[k]);
+  free(v);
+  return s->dim == 1 ? med : sqrt(med);
 }
 
 mfs_status mfs_point_set_close_pair(const mfs_point_set *s, double r, int *found, size_t *i,

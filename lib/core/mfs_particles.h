@@ -113,7 +113,14 @@ typedef struct {
   const double *x;    /* n*dim coordinates (m) */
   const double *vol;  /* n volumes (> 0; length in 1D, area in 2D), or NULL: the dual
                          volumes of the set's cells (below) */
+  double spacing;     /* the typical spacing (m), mfs_point_set_spacing; 0: not known */
 } mfs_point_set;
+
+/* The typical spacing of a set with volumes: the median volume in 1D, the
+ * square root of the median volume in 2D (on a lattice: dx, or sqrt(dx dy);
+ * the median leaves out the halved volumes at the boundary).  NAN without
+ * volumes. */
+double mfs_point_set_spacing(const mfs_point_set *s);
 
 /* The particles of a set.  Cells: 1D the intervals between neighbouring
  * particles (the set sorted by x); 2D the Delaunay triangles (Qhull,
@@ -122,8 +129,8 @@ typedef struct {
  * interval; 2D: mfs_dual_areas), which sum to the measure of the domain
  * (the interval [min x, max x], the convex hull).  flags: the ends (1D),
  * the convex hull vertices (2D, MFS_BND_HULL).  box: the bounding box (not
- * periodic).  dx = dy: the mean spacing, (max x - min x)/(n - 1) in 1D,
- * sqrt(sum of volumes / n) in 2D.  lattice MFS_LATTICE_POINTS, nx = n,
+ * periodic).  dx = dy: s->spacing, or the typical spacing of the volumes
+ * (mfs_point_set_spacing).  lattice MFS_LATTICE_POINTS, nx = n,
  * ny = 1, ij all 0.  NULL with *status: MFS_EINVAL (dimension, fewer than
  * dim + 1 particles, a coordinate not finite, a volume not positive and
  * finite, two particles at one place in 1D), MFS_EDOMAIN (2D: no

@@ -39,10 +39,12 @@ mfs_disc mfs_disc_default(void)
                     .rcond_min = 0.0};
 }
 
-/* The mean spacing of a particle set (mfs_disc_dx). */
+/* The spacing of a particle set (mfs_disc_dx). */
 static double set_spacing(const mfs_point_set *ps)
 {
   int dim = ps->dim;
+  if (ps->spacing > 0.0)
+    return ps->spacing;
   if (ps->n < 2 || (dim != 1 && dim != 2))
     return NAN;
   double lo[2], hi[2];

@@ -104,9 +104,10 @@ static inline int mfs_disc_points(const mfs_disc *d)
 }
 
 /* The spacings dx and dy (dy = 0 in 1D) and the support radius (support, or
- * a = D dx).  A particle set's spacing is its mean spacing: (max x - min x) /
- * (n - 1) in 1D, sqrt(A / n) in 2D with A the sum of the volumes (or, for a set
- * without volumes, the area of its bounding box). */
+ * a = D dx).  A particle set's spacing is its points->spacing (the typical
+ * spacing of its volumes, mfs_point_set_spacing, which the caller computes
+ * once); where that is 0, an estimate: (max x - min x) / (n - 1) in 1D,
+ * sqrt(A / n) in 2D with A the sum of the volumes or the bounding box's area. */
 double mfs_disc_dx(const mfs_disc *d);
 double mfs_disc_dy(const mfs_disc *d);
 double mfs_disc_support(const mfs_disc *d);
