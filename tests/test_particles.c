@@ -82,6 +82,38 @@ static void test_delaunay(gsl_rng *r)
     h += hull[i];
   CHECK(h == 4, "random points in a square with its corners: %zu hull vertices, want 4", h);
   CHECK(nt == 2 * n - 2 - h, "%zu triangles, want 2n - 2 - h = %zu", nt, 2 * n - 2 - h);
+  /* hull vertices against brute force on a disc (many of them): i is on the hull
+   * iff some line through i and another point has every point on one side */
+  {
+    size_t m = 80;
+    double *y = malloc(2 * m * sizeof *y);
+    for (size_t i = 0; i < m; i++) {
+      double t = 2 * M_PI * gsl_rng_uniform(r), rr = i < m / 2 ? 1.0 : sqrt(gsl_rng_uniform(r));
+      y[2 * i] = rr * cos(t);
+      y[2 * i + 1] = rr * sin(t);
+    }
+    unsigned char *hf = malloc(m);
+    mfs_convex_hull_2d(m, y, hf);
+    int agree = 1;
+    for (size_t i = 0; i < m; i++) {
+      int on = 0;
+      for (size_t j = 0; j < m && !on; j++) {
+        if (j == i)
+          continue;
+        int pos = 0, neg = 0;
+        for (size_t k = 0; k < m; k++) {
+          double c = area2(y, (int)i, (int)j, (int)k);
+          pos += c > 1e-14;
+          neg += c < -1e-14;
+        }
+        on = pos == 0 || neg == 0;
+      }
+      agree &= on == (hf[i] != 0);
+    }
+    CHECK(agree, "convex hull vertices of a disc against brute force");
+    free(hf);
+    free(y);
+  }
   double *A = malloc(n * sizeof *A), asum = 0.0;
   mfs_dual_areas(n, x, nt, t, A);
   int pos = 1;

@@ -176,8 +176,43 @@ mfs_status mfs_convex_hull_2d(size_t n, const double *x, unsigned char *hull)
     free(chain);
     return MFS_ENOMEM;
   }
-  for (size_t i = 0; i < n; i++)
-    p[i] = (hull_pt){x[2 * i], x[2 * i + 1], (int)i};
+  /* Akl-Toussaint: a point strictly inside the polygon of the extreme points
+   * in 8 directions is no hull vertex; most points are, and are not sorted */
+  const double dir[8][2] = {{1, 0}, {1, 1}, {0, 1}, {-1, 1}, {-1, 0}, {-1, -1}, {0, -1}, {1, -1}};
+  size_t ext[8] = {0};
+  double best[8], scale = 0.0;
+  for (int k = 0; k < 8; k++)
+    best[k] = -INFINITY;
+  for (size_t i = 0; i < n; i++) {
+    scale = fmax(scale, fabs(x[2 * i]) + fabs(x[2 * i + 1]));
+    for (int k = 0; k < 8; k++) {
+      double v = dir[k][0] * x[2 * i] + dir[k][1] * x[2 * i + 1];
+      if (v > best[k]) {
+        best[k] = v;
+        ext[k] = i;
+      }
+    }
+  }
+  hull_pt poly[8];
+  int np = 0;
+  for (int k = 0; k < 8; k++) {
+    hull_pt q = {x[2 * ext[k]], x[2 * ext[k] + 1], (int)ext[k]};
+    if (np == 0 || q.i != poly[np - 1].i)
+      poly[np++] = q;
+  }
+  if (np > 1 && poly[np - 1].i == poly[0].i)
+    np--;
+  double tol = 1e-12 * scale * scale;
+  size_t m = 0;
+  for (size_t i = 0; i < n; i++) {
+    hull_pt q = {x[2 * i], x[2 * i + 1], (int)i};
+    int inside = np >= 3;
+    for (int k = 0; k < np && inside; k++)
+      inside = cross(&poly[k], &poly[(k + 1) % np], &q) > tol;
+    if (!inside)
+      p[m++] = q;
+  }
+  n = m;
   qsort(p, n, sizeof *p, cmp_xy);
   /* lower and upper chains, keeping collinear points (pop only on a right turn) */
   for (int pass = 0; pass < 2; pass++) {

@@ -432,10 +432,38 @@ fail:
   return NULL;
 }
 
-static int cmp_double(const void *a, const void *b)
+/* The k-th smallest of v[0..n) (Hoare's selection, O(n) expected; v is reordered). */
+static double select_kth(double *v, size_t n, size_t k)
 {
-  double x = *(const double *)a, y = *(const double *)b;
-  return (x > y) - (x < y);
+  size_t lo = 0, hi = n - 1;
+  uint64_t seed = 0x9e3779b97f4a7c15ULL;
+  while (lo < hi) {
+    seed = seed * 6364136223846793005ULL + 1442695040888963407ULL;
+    double pivot = v[lo + (size_t)((seed >> 33) % (hi - lo + 1))];
+    size_t i = lo, j = hi;
+    while (i <= j) {
+      while (v[i] < pivot)
+        i++;
+      while (v[j] > pivot)
+        j--;
+      if (i <= j) {
+        double t = v[i];
+        v[i] = v[j];
+        v[j] = t;
+        i++;
+        if (j == 0)
+          break;
+        j--;
+      }
+    }
+    if (k <= j)
+      hi = j;
+    else if (k >= i)
+      lo = i;
+    else
+      return v[k];
+  }
+  return v[k];
 }
 
 double mfs_point_set_spacing(const mfs_point_set *s)
@@ -446,9 +474,10 @@ double mfs_point_set_spacing(const mfs_point_set *s)
   if (!v)
     return NAN;
   memcpy(v, s->vol, s->n * sizeof *v);
-  qsort(v, s->n, sizeof *v, cmp_double);
   size_t k = s->n / 2;
-  double med = s->n % 2 ? v[k] : 0.5 * (v[k - 1] + v[k]);
+  double med = select_kth(v, s->n, k);
+  if (s->n % 2 == 0) /* the largest of the lower half */
+    med = 0.5 * (med + select_kth(v, k, k - 1));
   free(v);
   return s->dim == 1 ? med : sqrt(med);
 }
@@ -476,26 +505,51 @@ mfs_status mfs_point_set_close_pair(const mfs_point_set *s, double r, int *found
     double L = box.hi[k] - box.lo[k];
     meas *= L > 0.0 ? L : 1.0;
   }
-  /* cells of about the mean spacing, so that their count stays O(n) */
+  /* cells of about the mean spacing, so that their count stays O(n), and at
+   * least 2r: a pair closer than r lies in one cell or two adjacent ones */
   double R = dim == 1 ? meas / (double)n : sqrt(meas / (double)n);
-  R = R > r ? R : r;
+  R = R > 2.0 * r ? R : 2.0 * r;
   mfs_status st;
   mfs_grid *g = mfs_grid_alloc(dim, n, s->x, &box, R, &st);
-  mfs_nlist *nl = g ? mfs_nlist_build(g, n, s->x, r, &st) : NULL;
-  if (!nl) {
-    mfs_grid_free(g);
+  if (!g)
     return st;
-  }
-  for (size_t q = 0; q < n && !*found; q++)
-    for (size_t e = nl->ptr[q]; e < nl->ptr[q + 1]; e++)
-      if ((size_t)nl->idx[e] != q) {
-        size_t o = (size_t)nl->idx[e];
-        *found = 1;
-        *i = q < o ? q : o;
-        *j = q < o ? o : q;
-        break;
+  int ny = dim == 2 ? g->nc[1] : 1, nx = g->nc[0];
+  double r2 = r * r;
+  size_t bi = 0, bj = 0;
+  for (int cy = 0; cy < ny; cy++)
+    for (int cx = 0; cx < nx; cx++) {
+      size_t c = (size_t)cy * (size_t)nx + (size_t)cx;
+      /* this cell and the forward half of its neighbours: each pair of cells once */
+      static const int off[5][2] = {{0, 0}, {1, 0}, {-1, 1}, {0, 1}, {1, 1}};
+      for (int o = 0; o < (dim == 2 ? 5 : 2); o++) {
+        int ox = cx + off[o][0], oy = cy + off[o][1];
+        if (ox < 0 || ox >= nx || oy >= ny)
+          continue;
+        size_t d = (size_t)oy * (size_t)nx + (size_t)ox;
+        for (size_t a = g->start[c]; a < g->start[c + 1]; a++) {
+          size_t b0 = o == 0 ? a + 1 : g->start[d];
+          for (size_t b = b0; b < g->start[d + 1]; b++) {
+            const double *xa = s->x + (size_t)g->item[a] * dim, *xb = s->x + (size_t)g->item[b] * dim;
+            double t = xa[0] - xb[0], d2 = t * t;
+            if (dim == 2) {
+              t = xa[1] - xb[1];
+              d2 += t * t;
+            }
+            if (d2 < r2) {
+              size_t p = (size_t)g->item[a], q = (size_t)g->item[b];
+              size_t lo = p < q ? p : q, hi = p < q ? q : p;
+              if (!*found || lo < bi || (lo == bi && hi < bj)) { /* the first pair by index */
+                bi = lo;
+                bj = hi;
+              }
+              *found = 1;
+            }
+          }
+        }
       }
-  mfs_nlist_free(nl);
+    }
   mfs_grid_free(g);
+  *i = bi;
+  *j = bj;
   return MFS_OK;
 }
