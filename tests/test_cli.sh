@@ -265,6 +265,29 @@ check "check lattice gauss2 plane strain: verdict stable" grep -q "^verdict: sta
 check "check: the user's rule listed" grep -q "your rule .*DualSPHysics" "$out"
 rm -rf "$pf"
 
+# --- docs/user-guide.md "Check your own model": the example runs as written (in a copy of
+# its input, so that its output file stays out of the tree) and prints what the guide shows
+ROOT=$(cd "$SCENES/../.." && pwd)
+guide=$ROOT/docs/user-guide.md
+if [ -f "$guide" ]; then
+  ex=$tmp/guide
+  mkdir -p "$ex/analysis/particles"
+  cp "$ROOT/analysis/particles/plate.csv" "$ex/analysis/particles/"
+  cmdline=$(awk '/^## Check your own model/ { on = 1 }
+    on && /^    build\/tools\/mfstab check --particles analysis/ { c = 1 }
+    c { l = $0; sub(/^ +/, "", l); cont = l ~ /\\$/; sub(/ *\\$/, "", l); printf "%s ", l; if (!cont) exit }' "$guide")
+  awk '/^## Check your own model/ { on = 1 } on && /^prints$/ { p = 1; next }
+    on && p && /^and writes/ { exit } on && p { sub(/^    /, ""); print }' "$guide" |
+    sed -e '1{/^$/d}' -e '${/^$/d}' >"$ex/want"
+  check "user guide: no example command found" test -n "$cmdline"
+  Mabs=$(cd "$(dirname "$M")" && pwd)/$(basename "$M")
+  (cd "$ex" && eval "\"$Mabs\" ${cmdline#build/tools/mfstab }") >"$ex/got" 2>"$ex/err"
+  check "user guide example: $(head -c 200 "$ex/err")" test ! -s "$ex/err"
+  check "user guide example: the output differs from the guide: $(diff "$ex/want" "$ex/got" | head -5 | tr '\n' '|')" cmp -s "$ex/want" "$ex/got"
+  check "user guide example: no CSV row in plate-check.csv" test "$(nlines "$ex/plate-check.csv")" -eq 2
+  rm -rf "$ex"
+fi
+
 # --- a good run: Table I, 2x2 cell quadrature --------------------------------
 mkdir -p "$tmp/res"
 csv=$tmp/res/table1.csv

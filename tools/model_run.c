@@ -34,7 +34,8 @@ void model_rules(const model_cmd *c, double *dt)
                           .young = c->young,
                           .poisson = c->poisson,
                           .density = d->material.density};
-    double f = mfs_rule_of(rule, cv) && c->m.rule_factor > 0.0 ? c->m.rule_factor : 0.0;
+    /* --rule-factor: the convention's own rule (not the peer's variants) */
+    double f = cv && rule == cv->rule && c->m.rule_factor > 0.0 ? c->m.rule_factor : 0.0;
     dt[k] = mfs_rule_dt(rule, &args, f);
   }
 }
