@@ -11,7 +11,8 @@
 #     10^5 particles (bench_check certify): the perturbed lattice with nodal
 #     integration and the lattice with 2 x 2 Gauss cells, lumped mass; and the
 #     perturbed lattice with consistent mass.
-# One core: the library is single-threaded; CHOLMOD's BLAS is Debian's default
+# One core: the library is single-threaded, OMP_NUM_THREADS=1 keeps CHOLMOD on one thread;
+# CHOLMOD's BLAS is Debian's default
 # (the reference BLAS on the machine of the committed CSV).  BLAS_DIR=DIR runs
 # the certification rows again with LD_LIBRARY_PATH=DIR (e.g. the libblas.so.3
 # of an extracted libopenblas0-serial package), labelled blas=DIR.
@@ -23,6 +24,8 @@
 #   time_ratio: seconds = (lanczos + factorizations) / arpack (wall), cpu_seconds the same
 #   in CPU time, value the entries of the factor.  peak_rss_mb: the process's peak.
 set -euo pipefail
+# one core: CHOLMOD's supernodal factorization runs OpenMP threads unless told not to
+export OMP_NUM_THREADS=1
 BUILD=${1:-build}
 B=$BUILD/analysis/bench/bench_check
 M=$BUILD/tools/mfstab
