@@ -50,6 +50,25 @@ static int cmp_dbl(const void *a, const void *b)
   return (x > y) - (x < y);
 }
 
+/* The proven steps of a model with largest eigenvalue lam: the Gershgorin
+ * bound (lumped, positive masses) is above it, the certification succeeds at
+ * 1.001 lam and fails at 0.999 lam. */
+static void check_steps(const mfs_model *m, double lam, const char *what)
+{
+  mfs_pencil P = {m->K, m->M, m->m};
+  if (m->m) {
+    mfs_gershgorin_result g;
+    mfs_gershgorin_csr(m->K, m->m, m->dof, &g);
+    if (g.nonpositive == 0)
+      CHECK(g.lambda >= lam * (1.0 - 1e-12), "%s: gershgorin %.10g below lambda_max %.10g", what,
+            g.lambda, lam);
+  }
+  mfs_certificate c1, c2;
+  mfs_status s1 = mfs_eig_certify(&P, 1.001 * lam, &c1), s2 = mfs_eig_certify(&P, 0.999 * lam, &c2);
+  CHECK(s1 == MFS_OK && c1.ok, "%s: certification fails at 1.001 lambda_max", what);
+  CHECK(s2 == MFS_OK && !c2.ok, "%s: certification succeeds at 0.999 lambda_max", what);
+}
+
 /* Largest eigenvalue by ARPACK and by dense LAPACK; the element bound
  * (table and streaming) against it. */
 static void check_max(const mfs_model_spec *s, const char *what)
@@ -236,6 +255,7 @@ static void check_bloch(const mfs_model_spec *s, const char *what)
     worst = e > worst ? e : worst;
   }
   CHECK(worst < 1e-10, "%s: periodic spectrum vs Bloch symbol: worst relative %.3g", what, worst);
+  check_steps(m, w[n - 1], what);
   mfs_disp_plan_free(pl);
   free(w);
   free(b);
@@ -291,6 +311,7 @@ static void check_zero(const mfs_model_spec *s, int want, int want_rigid, const 
   for (size_t i = 0; i < m->n; i++)
     dense += w[i] <= tol * lam;
   CHECK(z.count == dense, "%s: %d zero modes, dense %d", what, z.count, dense);
+  check_steps(m, w[m->n - 1], what);
   if (want >= 0)
     CHECK(z.count == want, "%s: %d zero modes, want %d", what, z.count, want);
   if ((size_t)dense < m->n)
@@ -577,6 +598,7 @@ static void check_set_is_lattice(mfs_model_spec s, int with_vol, const char *wha
           set->n, lat->n);
     CHECK_NEAR(l2 / l1, 1.0, 1e-12, "%s (%s volumes): lambda_max of the set vs the lattice",
                what, with_vol ? "the lattice's" : "dual");
+    check_steps(set, l2, what);
     mfs_zero_opts zo = {1e-8, 0, 0, 0};
     mfs_zero_modes z1, z2;
     st = mfs_eig_zero_modes(&P, l1, &zo, NULL, &z1, &info);
@@ -631,6 +653,10 @@ static void test_point_sets(void)
     mfs_bound_model(&s, &b2, NULL);
     CHECK(b1.lambda == b2.lambda && b1.negative_phi == b2.negative_phi,
           "perturbed lattice: bound %.17g vs streaming %.17g", b1.lambda, b2.lambda);
+    mfs_pencil P = {m->K, m->M, m->m};
+    double lp;
+    CHECK(mfs_eig_max(&P, NULL, &lp, NULL, NULL) == MFS_OK, "perturbed: lambda_max");
+    check_steps(m, lp, "perturbed lattice gauss2");
     CHECK(fabs(m->p->x[2 * 30] - 6 * m->dx) > 1e-6 * m->dx && fabs(m->p->x[2 * 30] - 6 * m->dx) < 0.3 * m->dx, "the lattice moved, by less than 0.3 dx");
     mfs_model_free(m);
   }
