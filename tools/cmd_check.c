@@ -38,9 +38,10 @@ static const char about[] =
   "  lattice_zero_theta,lattice_min_omega2,lattice_onset_sigma_tension,\n"
   "  lattice_onset_sigma_compression,nonpositive_masses,min_mass,min_mass_particle\n"
   "verdict: stable, or the labels that apply joined by '+': rank-deficiency (spurious zero-energy\n"
-  "modes in the finite model or on the lattice), tensile, material (the lattice's, under the\n"
-  "stresses it searches), negative-mass (a lumped mass <= 0: explicit integration does not\n"
-  "apply).  Kappa is kappa dx / pi, theta in degrees, sigma normalized by the modulus.\n";
+  "modes in the finite model or on the lattice), tensile or compressive (the lattice is unstable\n"
+  "under a tension, or a compression smaller than the material's own limit; onsets searched to\n"
+  "sigma/C = 10 and -1), material (the lattice's label at sigma = 0), negative-mass (a lumped\n"
+  "mass <= 0: explicit integration does not apply).  Kappa is kappa dx / pi, theta in degrees, sigma normalized by the modulus.\n";
 
 typedef struct {
   int frame;
@@ -174,14 +175,19 @@ int cmd_check(int argc, char **argv)
     write_modes(&c, &r, co.modes_prefix);
 
   /* verdict */
-  char verdict[96] = "";
+  char verdict[128] = "";
   int rank = (r.have_zero && r.z.count > r.rigid) ||
              (lc.ok && (lc.cl.labels & MFS_LABEL_RANK_DEFICIENCY));
-  int tens = lc.ok && (lc.cl.labels & MFS_LABEL_TENSILE);
+  /* under stress: an onset in tension, or in compression before the material's own
+   * (C + sigma <= 0 at sigma/C = -1), is an instability of the discretization */
+  int tens = lc.ok && ((lc.cl.labels & MFS_LABEL_TENSILE) || !isnan(lc.cl.onset_tension));
+  int comp = lc.ok && !isnan(lc.cl.onset_compression) &&
+             fabs(lc.cl.onset_compression + 1.0) >= 1e-6;
   int mat = lc.ok && (lc.cl.labels & MFS_LABEL_MATERIAL);
-  const char *parts[4] = {rank ? "rank-deficiency" : NULL, tens ? "tensile" : NULL,
-                          mat ? "material" : NULL, r.nonpositive ? "negative-mass" : NULL};
-  for (int k = 0; k < 4; k++)
+  const char *parts[5] = {rank ? "rank-deficiency" : NULL, tens ? "tensile" : NULL,
+                          comp ? "compressive" : NULL, mat ? "material" : NULL,
+                          r.nonpositive ? "negative-mass" : NULL};
+  for (int k = 0; k < 5; k++)
     if (parts[k]) {
       if (verdict[0])
         strcat(verdict, "+");
