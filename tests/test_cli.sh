@@ -169,7 +169,6 @@ bad_cmd eigs --perturb --perturb 0.5
 bad_cmd eigs --seeds --seeds 3
 bad_cmd eigs --seed --seed 3
 bad_cmd check -o -o -
-bad_cmd check --certify --certify
 
 # a numerical failure (ARPACK stopped after one iteration): exit 1, no file
 mkdir -p "$tmp/res"

@@ -98,7 +98,7 @@ const cli_opt model_opts_table[] = {
   {.name = "-o", .type = CLI_TEXT, .arg = "FILE", .help = "output file (default: standard output)",
    .offset = MOFF(out)},
   {.name = "--particles", .type = CLI_TEXT, .arg = "FILE",
-   .help = "a particle file: CSV with a header x (1D) or x,y (2D), optional volume (m or m^2;\n"
+   .help = "a particle file: CSV with a header x (1D) or x,y (2D), optional volume (m or m^2; "
            "without it the dual volumes of the Delaunay triangulation) and group",
    .offset = MOFF(particles)},
   {.name = "--fix", .type = CLI_TEXT, .arg = "GROUP[,GROUP]",
@@ -115,7 +115,7 @@ const cli_opt model_opts_table[] = {
    .offset = MOFF(convention), .find = find_convention,
    .list = (const void *const *)mfs_conventions},
   {.name = "--perturb", .type = CLI_REAL, .arg = "F",
-   .help = "move each coordinate of the lattice by a uniform random amount in [-F, F] dx\n"
+   .help = "move each coordinate of the lattice by a uniform random amount in [-F, F] dx "
            "(boundary particles along their boundary), 0 <= F < 0.5",
    .offset = MOFF(perturb), .bounds = CLI_GE | CLI_LT, .lo = 0, .hi = 0.5},
   {.name = "--seed", .type = CLI_INT, .arg = "S", .help = "seed of --perturb (default 1)",
@@ -129,7 +129,7 @@ const cli_opt model_opts_table[] = {
    .help = "the safety factor of the --convention peer's step rule (default: the peer's)",
    .offset = MOFF(rule_factor), .bounds = CLI_GT, .lo = 0},
   {.name = "--certify", .type = CLI_FLAG,
-   .help = "dt_certified: factor sigma M - K (CHOLMOD) to prove a step stable",
+   .help = "dt_certified: factor sigma M - K (CHOLMOD) to prove a step stable (check: always)",
    .offset = MOFF(certify)},
   {.type = CLI_END}};
 #undef MOFF
