@@ -219,6 +219,12 @@ check "dt_gershgorin $g <= dt_certified $ce <= dt_crit $cr" awk -v g="$g" -v c="
 check "certified fraction $fr in (0.999, 1]" awk -v f="$fr" 'BEGIN { exit !(f > 0.999 && f <= 1) }'
 mu=$(col "$pf/set.csv" shear_modulus)
 check "--young 2e9 --poisson 0.3: shear modulus $mu, want E/(2(1+nu))" awk -v m="$mu" 'BEGIN { d = m / (2e9 / 2.6) - 1; exit !(d < 1e-14 && d > -1e-14) }'
+# bound: the streamed Gershgorin equals eigs'; bound --certify certifies below dt_crit
+run bound --particles "$pf/lattice.csv" --support 0.23 --fix edge --certify --young 2e9 --poisson 0.3 --density 1000 -o "$pf/bnd.csv"
+check "bound --certify: exit $rc: $(head -c 200 "$err")" test "$rc" -eq 0
+bg=$(col "$pf/bnd.csv" dt_gershgorin) bc=$(col "$pf/bnd.csv" dt_certified)
+check "bound dt_gershgorin $bg = eigs' $g (1e-12)" close12 "$bg" "$g"
+check "bound dt_certified $bc <= dt_crit $cr, above 0.999 dt_crit" awk -v c="$bc" -v d="$cr" 'BEGIN { exit !(c != "" && c <= d && c > 0.999 * d) }'
 # a convention preset: SPHinXsys h -> a = 2h, wendland2
 run eigs --particles "$pf/lattice.csv" --smoothing-length 0.115 --convention sphinxsys -o "$pf/set.csv"
 check "eigs --convention sphinxsys: exit $rc: $(head -c 200 "$err")" test "$rc" -eq 0
