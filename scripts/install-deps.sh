@@ -2,7 +2,7 @@
 # Install what mfstab needs on Debian 12 (as root), skipping what is there.
 set -euo pipefail
 pkgs=(build-essential meson ninja-build pkg-config libgsl-dev liblapacke-dev libarpack2-dev
-      libsuitesparse-dev libinih-dev python3-matplotlib
+      libsuitesparse-dev libinih-dev libqhull-dev python3-matplotlib
       python3-nbclient python3-ipykernel python3-nbformat)
 missing=()
 for p in "${pkgs[@]}"; do

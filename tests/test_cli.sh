@@ -220,6 +220,61 @@ bad_cmd eigs --max-entries --nodes 100000 --dilation 3000
 bad_cmd eigs --max-entries --nodes 1000 --max-entries 100
 bad_cmd eigs --nodes --nodes --periodic
 bad_cmd eigs --tol --tol
+# particle files (issue 15): bad files and options, one line naming the file and line, exit 2
+pf=$tmp/pf
+mkdir -p "$pf"
+printf 'x,y\n0,0\n1,0\n0,1\n1,1\n0.5,0.5\n' >"$pf/ok.csv"
+printf 'x,y,group\n0,0,clamp\n1,0,free\n0,1,clamp\n1,1,free\n0.5,0.5,free\n' >"$pf/groups.csv"
+printf 'x,y\n0,0\n1,0\n0.5\n1,1\n' >"$pf/missing.csv"
+printf 'x,y\n0,0\n1,0,7\n0,1\n' >"$pf/extra.csv"
+printf 'x,y,z\n0,0,1\n' >"$pf/extracol.csv"
+printf 'y\n0\n1\n' >"$pf/nox.csv"
+printf 'x,y\n0,0\n1,zero\n0,1\n' >"$pf/word.csv"
+printf 'x,y\n0,0\n1,NaN\n0,1\n' >"$pf/nan.csv"
+printf 'x,y\n0,0\n1,0\n0,1\n1,0\n' >"$pf/dup.csv"
+printf 'x,y,volume\n0,0,0.25\n1,0,0\n0,1,0.25\n' >"$pf/zerovol.csv"
+printf 'x,y,volume\n0,0,0.25\n1,0,-0.25\n0,1,0.25\n' >"$pf/negvol.csv"
+printf 'x,y\n0,0\n1,0\n' >"$pf/two.csv"
+printf '' >"$pf/empty.csv"
+printf 'x,y\n' >"$pf/header.csv"
+bad_cmd eigs "missing.csv:4" --particles "$pf/missing.csv" --support 1.5
+bad_cmd eigs "extra.csv:3" --particles "$pf/extra.csv" --support 1.5
+bad_cmd eigs "extracol.csv:1" --particles "$pf/extracol.csv" --support 1.5
+bad_cmd eigs "nox.csv:1" --particles "$pf/nox.csv" --support 1.5
+bad_cmd eigs "word.csv:3" --particles "$pf/word.csv" --support 1.5
+bad_cmd eigs "nan.csv:3" --particles "$pf/nan.csv" --support 1.5
+bad_cmd eigs "dup.csv:5" --particles "$pf/dup.csv" --support 1.5
+bad_cmd eigs "zerovol.csv:3" --particles "$pf/zerovol.csv" --support 1.5
+bad_cmd eigs "negvol.csv:3" --particles "$pf/negvol.csv" --support 1.5
+bad_cmd eigs "two.csv:3" --particles "$pf/two.csv" --support 1.5
+bad_cmd eigs "empty.csv:1" --particles "$pf/empty.csv" --support 1.5
+bad_cmd eigs "header.csv:1" --particles "$pf/header.csv" --support 1.5
+bad_cmd eigs "ok.csv:2" --particles "$pf/ok.csv" --support 0.4
+bad_cmd eigs "no group 'wall'" --particles "$pf/groups.csv" --support 1.5 --fix wall
+bad_cmd eigs "no group column" --particles "$pf/ok.csv" --support 1.5 --fix clamp
+bad_cmd eigs "--particles" --particles "$pf/nonexistent.csv" --support 1.5
+bad_cmd bound "nan.csv:3" --particles "$pf/nan.csv" --support 1.5
+bad_cmd check "dup.csv:5" --particles "$pf/dup.csv" --support 1.5
+bad_cmd check "ok.csv:2" --particles "$pf/ok.csv" --support 0.4
+bad_cmd eigs --support --particles "$pf/ok.csv"
+bad_cmd eigs --nodes --particles "$pf/ok.csv" --support 1.5 --nodes 5
+bad_cmd eigs --dim --particles "$pf/ok.csv" --support 1.5 --dim 1
+bad_cmd eigs --fix --fix clamp
+bad_cmd eigs --modulus --dim 2 --modulus 3
+bad_cmd eigs --poisson --dim 2 --young 2e9
+bad_cmd eigs --shear-modulus --shear-modulus 1e9
+bad_cmd eigs --young --young 1 --modulus 2
+bad_cmd eigs --dilation --dilation 2 --support 0.1
+bad_cmd eigs --convention --smoothing-length 0.1
+bad_cmd eigs --smoothing-length --convention sphinxsys
+bad_cmd eigs --convention --convention gadget --smoothing-length 0.1
+bad_cmd eigs lammps-smd --convention lammps-smd --smoothing-length 0.1
+bad_cmd eigs --kernel --dim 2 --kernel cubic --convention sphinxsys --smoothing-length 0.05
+bad_cmd eigs --rule-factor --rule-factor 0.3
+bad_cmd eigs --perturb --perturb 0.5
+bad_cmd eigs --seeds --seeds 3
+bad_cmd eigs --seed --seed 3
+bad_cmd check -o -o -
 
 # a numerical failure (ARPACK stopped after one iteration): exit 1, no file
 mkdir -p "$tmp/res"
@@ -235,6 +290,93 @@ run eigs --nodes 41 --length 1 --quadrature gauss2 --dilation 1
 check "eigs linear FE: exit $rc: $(head -c 200 "$err")" test "$rc" -eq 0
 lm=$(awk -F, 'NR == 1 { for (i = 1; i <= NF; i++) h[$i] = i } NR == 2 { printf "%.10f", $h["lambda_max"] / 1600 }' "$out")
 check "eigs linear FE: lambda_max dx^2 = '$lm', want 4" awk -v v="$lm" 'BEGIN { d = v - 4; exit !(v != "" && d < 1e-9 && d > -1e-9) }'
+
+# --- particle files (issue 15) --------------------------------------------------
+# col FILE NAME [ROW]: the value of column NAME (row 1 by default)
+col() { awk -F, -v c="$2" -v r="${3:-1}" 'NR == 1 { for (i = 1; i <= NF; i++) h[$i] = i } NR == r + 1 { print $h[c] }' "$1"; }
+close12() { awk -v a="$1" -v b="$2" 'BEGIN { d = a / b - 1; exit !(a != "" && b != "" && d < 1e-12 && d > -1e-12) }'; }
+# a lattice with its volumes as a particle file: the lattice model's lambda_max and zero modes
+awk 'BEGIN { print "x,y,volume,group"; nx = 11; ny = 9; dx = 1 / (nx - 1); dy = 0.8 / (ny - 1)
+  for (j = 0; j < ny; j++) for (i = 0; i < nx; i++) { v = dx * dy
+    if (i == 0 || i == nx - 1) v /= 2; if (j == 0 || j == ny - 1) v /= 2
+    printf "%.17g,%.17g,%.17g,%s\n", i * dx, j * dy, v, (i == 0 || i == nx - 1 || j == 0 || j == ny - 1) ? "edge" : "inside" } }' >"$pf/lattice.csv"
+cut -d, -f1,2 "$pf/lattice.csv" >"$pf/lattice_novol.csv"
+for q in nodal; do
+  run eigs --dim 2 --nodes 11,9 --length 1,0.8 --quadrature $q --zero-modes -o "$pf/lat.csv"
+  check "eigs lattice: exit $rc: $(head -c 200 "$err")" test "$rc" -eq 0
+  for f in lattice lattice_novol; do
+    run eigs --particles "$pf/$f.csv" --support 0.2 --quadrature $q --zero-modes -o "$pf/set.csv"
+    check "eigs --particles $f.csv: exit $rc: $(head -c 200 "$err")" test "$rc" -eq 0
+    a=$(col "$pf/lat.csv" lambda_max) b=$(col "$pf/set.csv" lambda_max)
+    check "$f.csv ($q): lambda_max $b, lattice $a (want equal to 1e-12)" close12 "$b" "$a"
+    a=$(col "$pf/lat.csv" zero_modes) b=$(col "$pf/set.csv" zero_modes)
+    check "$f.csv ($q): $b zero modes, lattice $a" test "$a" = "$b"
+  done
+done
+run eigs --dim 2 --nodes 11,9 --length 1,0.8 --fixed boundary --physics plane-strain --poisson 0.3 -o "$pf/lat.csv"
+run eigs --particles "$pf/lattice.csv" --support 0.2 --fix edge --physics plane-strain --poisson 0.3 -o "$pf/set.csv"
+a=$(col "$pf/lat.csv" lambda_max) b=$(col "$pf/set.csv" lambda_max)
+check "lattice.csv --fix edge, plane strain: lambda_max $b, lattice --fixed boundary $a" close12 "$b" "$a"
+# the time steps: dt_gershgorin <= dt_certified <= dt_crit, the certified fraction near 1
+run eigs --particles "$pf/lattice.csv" --support 0.23 --fix edge --certify --young 2e9 --poisson 0.3 --density 1000 -o "$pf/set.csv"
+check "eigs --certify: exit $rc: $(head -c 200 "$err")" test "$rc" -eq 0
+g=$(col "$pf/set.csv" dt_gershgorin) ce=$(col "$pf/set.csv" dt_certified) cr=$(col "$pf/set.csv" dt_crit) fr=$(col "$pf/set.csv" certified_fraction)
+check "dt_gershgorin $g <= dt_certified $ce <= dt_crit $cr" awk -v g="$g" -v c="$ce" -v d="$cr" 'BEGIN { exit !(g != "" && g <= c && c <= d) }'
+check "certified fraction $fr in (0.999, 1]" awk -v f="$fr" 'BEGIN { exit !(f > 0.999 && f <= 1) }'
+mu=$(col "$pf/set.csv" shear_modulus)
+check "--young 2e9 --poisson 0.3: shear modulus $mu, want E/(2(1+nu))" awk -v m="$mu" 'BEGIN { d = m / (2e9 / 2.6) - 1; exit !(d < 1e-14 && d > -1e-14) }'
+# bound: the streamed Gershgorin equals eigs'; bound --certify certifies below dt_crit
+run bound --particles "$pf/lattice.csv" --support 0.23 --fix edge --certify --young 2e9 --poisson 0.3 --density 1000 -o "$pf/bnd.csv"
+check "bound --certify: exit $rc: $(head -c 200 "$err")" test "$rc" -eq 0
+bg=$(col "$pf/bnd.csv" dt_gershgorin) bc=$(col "$pf/bnd.csv" dt_certified)
+check "bound dt_gershgorin $bg = eigs' $g (1e-12)" close12 "$bg" "$g"
+check "bound dt_certified $bc <= dt_crit $cr, above 0.999 dt_crit" awk -v c="$bc" -v d="$cr" 'BEGIN { exit !(c != "" && c <= d && c > 0.999 * d) }'
+# a convention preset: SPHinXsys h -> a = 2h, wendland2
+run eigs --particles "$pf/lattice.csv" --smoothing-length 0.115 --convention sphinxsys -o "$pf/set.csv"
+check "eigs --convention sphinxsys: exit $rc: $(head -c 200 "$err")" test "$rc" -eq 0
+check "sphinxsys h = 0.115: support $(col "$pf/set.csv" support_radius), want 0.23" test "$(col "$pf/set.csv" support_radius)" = 0.23
+check "sphinxsys: kernel $(col "$pf/set.csv" kernel), want wendland2" test "$(col "$pf/set.csv" kernel)" = wendland2
+# lumped masses <= 0: reported with the particle, the results that need them empty, exit 0
+printf 'x,volume\n2.8980211416829427,1\n3.5831232851661508,1\n3.758693438343573,1\n3.7813888591844877,0.001\n7.014895649611761,1\n7.053251366963367,1\n7.227225216560104,1\n7.960414989720876,0.001\n8.358171972261282,0.001\n9.305400074553292,0.001\n' >"$pf/negmass.csv"
+run eigs --particles "$pf/negmass.csv" --support 3 --zero-modes --certify -o "$pf/set.csv"
+check "negative masses: exit $rc, want 0: $(head -c 200 "$err")" test "$rc" -eq 0
+check "negative masses: no note naming the particle on stderr" grep -q "negmass.csv:10" "$err"
+check "negative masses: nonpositive_masses $(col "$pf/set.csv" nonpositive_masses), want 2" test "$(col "$pf/set.csv" nonpositive_masses)" = 2
+check "negative masses: min_mass_particle $(col "$pf/set.csv" min_mass_particle), want 8" test "$(col "$pf/set.csv" min_mass_particle)" = 8
+for c in lambda_max dt_crit dt_gershgorin dt_certified zero_modes; do
+  check "negative masses: $c = '$(col "$pf/set.csv" $c)', want empty (does not apply)" test -z "$(col "$pf/set.csv" $c)"
+done
+run check --particles "$pf/negmass.csv" --support 3
+check "check, negative masses: exit $rc" test "$rc" -eq 0
+check "check, negative masses: verdict" grep -q "^verdict: .*negative-mass" "$out"
+# a disorder sweep: one row per seed, min <= median <= max
+run eigs --dim 2 --nodes 9,9 --perturb 0.3 --seed 5 --seeds 5 --zero-modes -o "$pf/sweep.csv"
+check "eigs --seeds 5: exit $rc: $(head -c 200 "$err")" test "$rc" -eq 0
+check "eigs --seeds 5: $(($(nlines "$pf/sweep.csv") - 1)) rows, want 5" test "$(nlines "$pf/sweep.csv")" -eq 6
+check "eigs --seeds: seeds 5..9" test "$(col "$pf/sweep.csv" seed 5)" = 9
+lo=$(col "$pf/sweep.csv" lambda_max_min) md=$(col "$pf/sweep.csv" lambda_max_median) hi=$(col "$pf/sweep.csv" lambda_max_max)
+check "sweep: lambda_max min $lo <= median $md <= max $hi" awk -v a="$lo" -v b="$md" -v c="$hi" 'BEGIN { exit !(a < b && b < c) }'
+# modes for ParaView: 3 spurious modes of periodic nodal integration and the highest
+run eigs --dim 2 --nodes 10,10 --periodic --write-modes "$pf/pm" -o "$pf/pm.csv"
+check "eigs --write-modes: exit $rc: $(head -c 200 "$err")" test "$rc" -eq 0
+check "modes CSV: $(nlines "$pf/pm_modes.csv") lines, want 1 + 4 x 100" test "$(nlines "$pf/pm_modes.csv")" -eq 401
+check "modes CSV: 3 spurious modes" test "$(awk -F, 'NR > 1 && $2 == "spurious"' "$pf/pm_modes.csv" | wc -l)" -eq 300
+check "modes VTK: header" grep -q "^DATASET POLYDATA" "$pf/pm_modes.vtk"
+check "modes VTK: 4 mode arrays" test "$(grep -c '^SCALARS mode' "$pf/pm_modes.vtk")" -eq 4
+# check: summary and one CSV row
+run check --particles "$pf/groups.csv" --support 1.5 --fix clamp -o "$pf/check.csv"
+check "check: exit $rc: $(head -c 200 "$err")" test "$rc" -eq 0
+check "check: no verdict line" grep -q "^verdict: " "$out"
+check "check: no dt_certified line" grep -q "dt_certified" "$out"
+check "check: $(nlines "$pf/check.csv") CSV lines, want 2" test "$(nlines "$pf/check.csv")" -eq 2
+check "check: verdict column" test -n "$(col "$pf/check.csv" verdict)"
+run check --dim 2 --nodes 12,12 --quadrature gauss2 --physics plane-strain --young 70e9 --poisson 0.33 --density 2700 --length 0.11,0.11 --smoothing-length 0.01 --convention dualsphysics
+check "check lattice dualsphysics: exit $rc: $(head -c 200 "$err")" test "$rc" -eq 0
+check "check lattice gauss2 plane strain: verdict stable" grep -q "^verdict: stable" "$out"
+check "check: the user's rule listed" grep -q "your rule .*DualSPHysics" "$out"
+rm -rf "$pf"
+
+# (docs/user-guide.md's "Check your own model" example runs in tests/test_docs.py with the others)
 
 # --- a good run: Table I, 2x2 cell quadrature --------------------------------
 mkdir -p "$tmp/res"

@@ -10,6 +10,8 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include <stdio.h>
+
 #include "check.h"
 #include "mfstab.h"
 
@@ -48,6 +50,25 @@ static int cmp_dbl(const void *a, const void *b)
   return (x > y) - (x < y);
 }
 
+/* The proven steps of a model with largest eigenvalue lam: the Gershgorin
+ * bound (lumped, positive masses) is above it, the certification succeeds at
+ * 1.001 lam and fails at 0.999 lam. */
+static void check_steps(const mfs_model *m, double lam, const char *what)
+{
+  mfs_pencil P = {m->K, m->M, m->m};
+  if (m->m) {
+    mfs_gershgorin_result g;
+    mfs_gershgorin_csr(m->K, m->m, m->dof, &g);
+    if (g.nonpositive == 0)
+      CHECK(g.lambda >= lam * (1.0 - 1e-12), "%s: gershgorin %.10g below lambda_max %.10g", what,
+            g.lambda, lam);
+  }
+  mfs_certificate c1, c2;
+  mfs_status s1 = mfs_eig_certify(&P, 1.001 * lam, &c1), s2 = mfs_eig_certify(&P, 0.999 * lam, &c2);
+  CHECK(s1 == MFS_OK && c1.ok, "%s: certification fails at 1.001 lambda_max", what);
+  CHECK(s2 == MFS_OK && !c2.ok, "%s: certification succeeds at 0.999 lambda_max", what);
+}
+
 /* Largest eigenvalue by ARPACK and by dense LAPACK; the element bound
  * (table and streaming) against it. */
 static void check_max(const mfs_model_spec *s, const char *what)
@@ -81,6 +102,39 @@ static void check_max(const mfs_model_spec *s, const char *what)
   if (!s->disc.consistent_mass && b.negative_phi == 0)
     CHECK(b.lambda >= ref * (1.0 - 1e-12), "%s: bound %.10g below lambda_max %.10g", what,
           b.lambda, ref);
+
+  /* Gershgorin with the lumped mass: above lambda_max; the streamed rows equal the CSR */
+  if (!s->disc.consistent_mass) {
+    mfs_gershgorin_result g, gs;
+    st = mfs_gershgorin_csr(m->K, m->m, m->dof, &g);
+    CHECK(st == MFS_OK && g.nonpositive == 0, "%s: gershgorin %s, %zu masses <= 0", what,
+          mfs_strerror(st), g.nonpositive);
+    CHECK(g.lambda >= ref * (1.0 - 1e-12), "%s: gershgorin %.10g below lambda_max %.10g", what,
+          g.lambda, ref);
+    CHECK(g.lambda <= 2.0 * ref, "%s: gershgorin / lambda_max = %.4f > 2", what, g.lambda / ref);
+    printf("gershgorin/lambda_max %.4f  element bound/lambda_max %.4f%s  %s\n", g.lambda / ref,
+           b.lambda / ref, b.negative_phi ? " (not valid: phi < 0)" : "", what);
+    st = mfs_gershgorin_plan(m->pl, &m->mat, s->fixed != MFS_FIX_NONE ? m->fixed : NULL, &gs);
+    CHECK(st == MFS_OK && gs.argmax == g.argmax, "%s: streamed gershgorin %s, row %zu vs %zu",
+          what, mfs_strerror(st), gs.argmax, g.argmax);
+    CHECK_NEAR(gs.lambda / g.lambda, 1.0, 1e-13, "%s: streamed vs CSR gershgorin", what);
+  }
+  /* certification: sigma M - K factors at 1.001 lambda_max, not at 0.999 */
+  mfs_certificate c;
+  st = mfs_eig_certify(&P, 1.001 * ref, &c);
+  CHECK(st == MFS_OK && c.ok, "%s: certification fails at 1.001 lambda_max (%s)", what,
+        mfs_strerror(st));
+  CHECK(c.margin > 0.0 && c.margin < 1e-10, "%s: rounding margin %.3g (row %d)", what, c.margin,
+        c.max_row);
+  st = mfs_eig_certify(&P, 0.999 * ref, &c);
+  CHECK(st == MFS_OK && !c.ok, "%s: certification succeeds at 0.999 lambda_max", what);
+  mfs_certify_opts co = {.lambda_est = lam};
+  mfs_certify_result cr;
+  st = mfs_eig_certify_search(&P, &co, &cr);
+  CHECK(st == MFS_OK && cr.ok && cr.lambda_upper >= ref * (1.0 - 1e-13) &&
+          cr.lambda_upper <= ref * (1.0 + 1e-5),
+        "%s: search from the Lanczos value: ok %d sigma/lambda_max %.9f after %d", what, cr.ok,
+        cr.sigma / ref, cr.factorizations);
   free(w);
   mfs_model_free(m);
 }
@@ -201,6 +255,7 @@ static void check_bloch(const mfs_model_spec *s, const char *what)
     worst = e > worst ? e : worst;
   }
   CHECK(worst < 1e-10, "%s: periodic spectrum vs Bloch symbol: worst relative %.3g", what, worst);
+  check_steps(m, w[n - 1], what);
   mfs_disp_plan_free(pl);
   free(w);
   free(b);
@@ -256,6 +311,7 @@ static void check_zero(const mfs_model_spec *s, int want, int want_rigid, const 
   for (size_t i = 0; i < m->n; i++)
     dense += w[i] <= tol * lam;
   CHECK(z.count == dense, "%s: %d zero modes, dense %d", what, z.count, dense);
+  check_steps(m, w[m->n - 1], what);
   if (want >= 0)
     CHECK(z.count == want, "%s: %d zero modes, want %d", what, z.count, want);
   if ((size_t)dense < m->n)
@@ -516,8 +572,106 @@ static void test_errors(void)
   }
 }
 
+/* A particle set holding a lattice (its coordinates, and its volumes or
+ * none: the dual areas are the lattice's volumes) is the lattice model: the
+ * same lambda_max and zero-mode count to 1e-12. */
+static void check_set_is_lattice(mfs_model_spec s, int with_vol, const char *what)
+{
+  mfs_model *lat = build(&s, what);
+  if (!lat)
+    return;
+  mfs_point_set ps = {.dim = s.disc.dim, .n = lat->p->n, .x = lat->p->x,
+                      .vol = with_vol ? lat->p->vol : NULL};
+  unsigned char *mask = malloc(lat->p->n);
+  for (size_t I = 0; I < lat->p->n; I++)
+    mask[I] = lat->fixed[I];
+  mfs_model_spec t = s;
+  t.disc.source = (mfs_source){.lattice = MFS_LATTICE_POINTS, .points = &ps};
+  t.disc.support = lat->a;
+  if (s.fixed != MFS_FIX_NONE) {
+    t.fixed = MFS_FIX_MASK;
+    t.fix_mask = mask;
+  }
+  mfs_model *set = build(&t, what);
+  if (set) {
+    mfs_pencil P = {lat->K, lat->M, lat->m}, Q = {set->K, set->M, set->m};
+    double l1 = 0.0, l2 = 0.0;
+    mfs_eig_info info;
+    mfs_status st = mfs_eig_max(&P, NULL, &l1, NULL, &info);
+    st |= mfs_eig_max(&Q, NULL, &l2, NULL, &info);
+    CHECK(st == MFS_OK && set->n == lat->n, "%s: eig %s, dofs %zu/%zu", what, mfs_strerror(st),
+          set->n, lat->n);
+    CHECK_NEAR(l2 / l1, 1.0, 1e-12, "%s (%s volumes): lambda_max of the set vs the lattice",
+               what, with_vol ? "the lattice's" : "dual");
+    check_steps(set, l2, what);
+    mfs_zero_opts zo = {1e-8, 0, 0, 0};
+    mfs_zero_modes z1, z2;
+    st = mfs_eig_zero_modes(&P, l1, &zo, NULL, &z1, &info);
+    st |= mfs_eig_zero_modes(&Q, l2, &zo, NULL, &z2, &info);
+    CHECK(st == MFS_OK && z1.count == z2.count, "%s: zero modes %d (set) vs %d (lattice)", what,
+          z2.count, z1.count);
+    CHECK(mfs_model_rigid_fields(set, NULL) == mfs_model_rigid_fields(lat, NULL),
+          "%s: rigid fields", what);
+    mfs_bound_result b1, b2;
+    mfs_bound_model(&s, &b1, NULL);
+    mfs_bound_model(&t, &b2, NULL);
+    CHECK_NEAR(b2.lambda / b1.lambda, 1.0, 1e-12, "%s: element bound of the set vs the lattice",
+               what);
+    mfs_model_free(set);
+  }
+  free(mask);
+  mfs_model_free(lat);
+}
+
+static void test_point_sets(void)
+{
+  mfs_model_spec s = spec1(31, 2.3, "nodal");
+  check_set_is_lattice(s, 1, "1D free nodal");
+  check_set_is_lattice(s, 0, "1D free nodal");
+  s.fixed = MFS_FIX_ENDS;
+  s.disc.kernel = &mfs_kernel_quartic;
+  check_set_is_lattice(s, 1, "1D fixed nodal quartic");
+  s = spec2(13, 11, 2.1, "nodal");
+  check_set_is_lattice(s, 1, "2D free nodal");
+  check_set_is_lattice(s, 0, "2D free nodal");
+  s.fixed = MFS_FIX_BOUNDARY;
+  s.disc.consistent_mass = 1;
+  check_set_is_lattice(s, 1, "2D fixed nodal consistent");
+  s = spec2(10, 9, 2.0, "nodal");
+  s.disc.material.physics = MFS_PHYS_PLANE_STRAIN;
+  s.disc.material.poisson = 0.3;
+  check_set_is_lattice(s, 1, "2D plane strain nodal");
+  s.disc.shape = &mfs_shape_rl;
+  check_set_is_lattice(s, 1, "2D plane strain nodal rl");
+  /* the 1D stress points of a set are those of the lattice */
+  s = spec1(31, 1.8, "stress");
+  check_set_is_lattice(s, 0, "1D free stress points");
+
+  /* a set with random positions: the bound through the plan is the table bound */
+  s = spec2(12, 12, 2.2, "gauss2");
+  s.disc.source.perturb = 0.3;
+  s.disc.source.seed = 11;
+  mfs_model *m = build(&s, "perturbed");
+  if (m) {
+    mfs_bound_result b1, b2;
+    mfs_bound_of_model(m, &b1);
+    mfs_bound_model(&s, &b2, NULL);
+    CHECK(b1.lambda == b2.lambda && b1.negative_phi == b2.negative_phi,
+          "perturbed lattice: bound %.17g vs streaming %.17g", b1.lambda, b2.lambda);
+    mfs_pencil P = {m->K, m->M, m->m};
+    double lp;
+    CHECK(mfs_eig_max(&P, NULL, &lp, NULL, NULL) == MFS_OK, "perturbed: lambda_max");
+    check_steps(m, lp, "perturbed lattice gauss2");
+    CHECK(fabs(m->p->x[2 * 30] - 6 * m->dx) > 1e-6 * m->dx && fabs(m->p->x[2 * 30] - 6 * m->dx) < 0.3 * m->dx, "the lattice moved, by less than 0.3 dx");
+    mfs_model_free(m);
+  }
+  s.disc.source.perturb = 0.5;
+  CHECK(mfs_model_spec_check(&s, NULL) == MFS_EINVAL, "perturbation 0.5 refused");
+}
+
 int main(void)
 {
+  test_point_sets();
   test_arpack_vs_dense();
   test_bloch();
   test_zero_modes();

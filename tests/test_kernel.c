@@ -60,9 +60,13 @@ static void check_shape_of_w(const mfs_kernel_type *k)
   k->eval(1.0 + 0.2731, &w, &dw, &d2w);
   CHECK(w == 0.0 && dw == 0.0 && d2w == 0.0, "%s: w, w', w'' at z = 1.2731 not zero", k->name);
   k->eval(0.0, &w, &dw, &d2w);
-  CHECK(dw == 0.0, "%s: w'(0) = %.3g, want 0", k->name, dw);
-  CHECK(w > 0.0 && d2w < 0.0, "%s: w(0) = %g > 0 and w''(0) = %g < 0 (a peak at 0)", k->name, w,
-        d2w);
+  if (k->cusp) { /* a cone at the centre: w'(0) < 0 */
+    CHECK(w > 0.0 && dw < 0.0, "%s (cusp): w(0) = %g > 0 and w'(0) = %g < 0", k->name, w, dw);
+  } else {
+    CHECK(dw == 0.0, "%s: w'(0) = %.3g, want 0", k->name, dw);
+    CHECK(w > 0.0 && d2w < 0.0, "%s: w(0) = %g > 0 and w''(0) = %g < 0 (a peak at 0)", k->name,
+          w, d2w);
+  }
 
   /* scale of the derivatives, for relative tolerances */
   double scale = 0.0;
@@ -87,9 +91,10 @@ static void check_shape_of_w(const mfs_kernel_type *k)
     /* decreasing on (0, 1) */
     CHECK(w_of(k, z, 1) < 0.0, "%s: w'(%g) = %g not negative", k->name, z, w_of(k, z, 1));
   }
-  /* continuity of w, w', w'' across the breakpoints (C2 splines) */
-  const double bps[] = {1.0 / 3.0, 0.5, 2.0 / 3.0};
-  for (size_t i = 0; i < 3; i++)
+  /* continuity of w, w', w'' across the breakpoints (C2 splines: the cubic's 1/2,
+   * the quintic's 1/3 and 2/3, the M5 spline's 1/5 and 3/5) */
+  const double bps[] = {1.0 / 3.0, 0.5, 2.0 / 3.0, 0.2, 0.6};
+  for (size_t i = 0; i < sizeof bps / sizeof bps[0]; i++)
     for (int which = 0; which < 3; which++) {
       double lo = w_of(k, bps[i] * (1 - 1e-12), which), hi = w_of(k, bps[i] * (1 + 1e-12), which);
       CHECK_NEAR(lo, hi, 1e-9 * scale, "%s: derivative %d continuous at z = %g", k->name, which,
@@ -120,7 +125,9 @@ static void check_radial(const mfs_kernel_type *k)
                  k->name, dim, r);
       CHECK_NEAR(v.d2W, c * d2w / (a * a), 1e-14 * c * fabs(d2w) / (a * a),
                  "%s d=%d r=%g: d2W/dr2", k->name, dim, r);
-      if (r == 0.0)
+      if (r == 0.0 && k->cusp)
+        CHECK(v.dW_r == 0.0, "%s d=%d (cusp): dW_r(0) = %g, want 0", k->name, dim, v.dW_r);
+      else if (r == 0.0)
         CHECK(v.dW_r == v.d2W, "%s d=%d: dW_r(0) = %g, want d2W(0) = %g", k->name, dim, v.dW_r,
               v.d2W);
       else
@@ -128,6 +135,8 @@ static void check_radial(const mfs_kernel_type *k)
                    k->name, dim, r);
     }
     /* dW/r tends to d2W at 0 (w'(0) = 0): the r = 0 value is the limit */
+    if (k->cusp)
+      continue;
     mfs_kernel_value v0 = mfs_kernel_radial(k, dim, a, 0.0);
     mfs_kernel_value v1 = mfs_kernel_radial(k, dim, a, 1e-7 * a);
     CHECK_NEAR(v1.dW_r, v0.d2W, 1e-5 * fabs(v0.d2W), "%s d=%d: dW/r -> d2W as r -> 0", k->name,
@@ -147,11 +156,14 @@ int main(void)
     check_radial(k);
     CHECK(mfs_kernel_find(k->name) == k, "mfs_kernel_find(\"%s\")", k->name);
   }
-  CHECK(nk == 4, "%d kernels in mfs_kernel_types, want 4", nk);
+  CHECK(nk == 9, "%d kernels in mfs_kernel_types, want 9", nk);
   CHECK(mfs_kernel_find("cubic") == &mfs_kernel_cubic, "find cubic");
   CHECK(mfs_kernel_find("quartic") == &mfs_kernel_quartic, "find quartic");
   CHECK(mfs_kernel_find("wendland2") == &mfs_kernel_wendland2, "find wendland2");
   CHECK(mfs_kernel_find("quintic") == &mfs_kernel_quintic, "find quintic");
+  CHECK(mfs_kernel_find("spiky") == &mfs_kernel_spiky && mfs_kernel_spiky.cusp,
+        "find spiky (a cusp)");
+  CHECK(mfs_kernel_find("m5") == &mfs_kernel_m5, "find m5");
   CHECK(mfs_kernel_find("gaussian") == NULL, "unknown kernel name gives NULL");
   CHECK(mfs_kernel_find("") == NULL, "empty kernel name gives NULL");
   CHECK(mfs_kernel_find("Cubic") == NULL, "names are case-sensitive");

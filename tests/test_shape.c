@@ -284,7 +284,12 @@ static void check_fd(const mfs_shape_type *sh, const mfs_shape_ctx *c, const mfs
     if (is_grad)
       CHECK(em1 <= 1e-6 * gs, "%s: d_%d phi vs central difference: max error %.3g, scale %.3g",
             ctx, n, em1, gs);
-    if (order >= 2)
+    /* a cusp kernel (spiky) has no second derivative at its particle (the
+     * difference across the cone is not a derivative), and near it the second
+     * derivatives vary like 1/r: the truncation error ~ (h/r)^2 exceeds the
+     * tolerance within 0.05 a of a particle */
+    int cone = c->kernel->cusp && rmin < 0.05 * c->a;
+    if (order >= 2 && !cone)
       CHECK(em2 <= 1e-6 * Gs, "%s: d_%d (gradient) vs central difference: error %.3g, scale %.3g",
             ctx, n, em2, Gs);
   }

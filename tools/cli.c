@@ -262,7 +262,7 @@ static void set_value(const cli_opt *o, void *base, const char *val)
     }
   case CLI_TABLE: {
     const void *t = o->find(val);
-    char names[512];
+    char names[2048];
     if (!t)
       cli_die(2, "%s '%s': unknown; allowed: %s", o->name, val,
               cli_table_names(o->list, names, sizeof names));
@@ -306,10 +306,10 @@ static void print_opt(FILE *f, const cli_opt *o)
     snprintf(left, sizeof left, "  %s", o->name);
   else
     snprintf(left, sizeof left, "  %s %s", o->name, o->arg ? o->arg : "VALUE");
-  char hbuf[1024];
+  char hbuf[2560];
   const char *h = o->help ? o->help : "";
   if (o->type == CLI_TABLE) { /* the names come from the tables */
-    char names[512];
+    char names[2048];
     snprintf(hbuf, sizeof hbuf, "%s: %s", h, cli_table_names(o->list, names, sizeof names));
     h = hbuf;
   }

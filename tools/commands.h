@@ -9,5 +9,6 @@ int cmd_eigs(int argc, char **argv);
 int cmd_bound(int argc, char **argv);
 int cmd_run(int argc, char **argv);
 int cmd_map(int argc, char **argv);
+int cmd_check(int argc, char **argv);
 
 #endif

@@ -1,10 +1,14 @@
-/* The finite-model commands `mfstab eigs` and `mfstab bound` (tools/cmd_eigs.c,
- * tools/cmd_bound.c): their shared options, and the data of the paper's
- * Figs 17 and 18 for `mfstab reproduce`. */
+/* The finite-model commands `mfstab eigs`, `mfstab bound` and `mfstab check`
+ * (tools/cmd_eigs.c, cmd_bound.c, cmd_check.c): their shared options (the
+ * model: a lattice box, a perturbed lattice or a particle file; the support
+ * in the user's terms; the material in SI), the analyses they share
+ * (tools/model_run.c), and the data of the paper's Figs 17 and 18 for
+ * `mfstab reproduce`. */
 #ifndef MFSTAB_EIGS_FIGURES_H
 #define MFSTAB_EIGS_FIGURES_H
 
 #include "cli.h"
+#include "particles_csv.h"
 
 /* Write, into directory dir (which must exist), the tidy CSV data of
  *   fig17_cubic.csv, fig17_quartic.csv   lambda_max dx^2 of the 1D EFG bar
@@ -19,30 +23,49 @@
  * Returns 0, or 1 after one line on stderr if a model or a file fails. */
 int eigs_figure17(const char *dir);
 
-/* The options of a finite model, shared by eigs and bound. */
+/* The options of a finite model, shared by eigs, bound and check. */
 typedef struct {
   const char *nodes, *length;
   int fixed;                  /* none, ends, boundary */
   int periodic;
   long fourier_points, fourier_angles;
   const char *out;
+  const char *particles;      /* --particles FILE */
+  const char *fix;            /* --fix GROUP[,GROUP...] */
+  double support;             /* --support A (m) */
+  double smoothing_length;    /* --smoothing-length H (m) */
+  const mfs_convention *convention;
+  double perturb;             /* --perturb F: fraction of dx */
+  long seed;
+  double young, shear_modulus;
+  double rule_factor;         /* --rule-factor F: the convention's step rule with this factor */
+  int certify;
 } model_opts;
 
 extern const cli_opt model_opts_table[];
-#define MODEL_NOPTS 8
+#define MODEL_NOPTS 19
 
-/* The parsed options of eigs or bound. */
+/* The parsed options of eigs, bound or check, and what they resolve to. */
 typedef struct {
   cli_disc d;
   model_opts m;
-  mfs_model_spec s;  /* the model */
+  mfs_model_spec s;           /* the model */
+  particle_file pf;           /* --particles */
+  int have_file;
+  unsigned char *fix_mask;    /* --fix: one flag per particle */
+  double young, shear, poisson; /* E (Pa), the shear modulus (2D; Pa), nu */
+  const char *support_option; /* the option that set the support radius, for messages */
 } model_cmd;
 
 /* Check the options of a finite model and build its spec (exit 2 with one
- * line naming the option). */
-void model_finish(model_cmd *c, const cli_group *disc_group, const cli_group *model_group);
+ * line naming the option): reads the particle file, maps the convention,
+ * resolves the material.  physics_group: the group of --physics and
+ * --poisson (to know whether --poisson was given). */
+void model_finish(model_cmd *c, const cli_group *disc_group, const cli_group *physics_group,
+                  const cli_group *model_group);
+void model_cmd_free(model_cmd *c);
 
-/* Column values that both commands write. */
+/* Column values that the commands write. */
 typedef struct {
   double c;        /* wave speed sqrt(modulus/density) of the model */
   double c_p;      /* P-wave speed: bar sqrt(E/rho) in 1D, sqrt((lambda+2mu)/rho) in 2D */
@@ -56,13 +79,19 @@ void eigs_derive(const mfs_model_spec *s, eigs_derived *dv);
 
 /* The configuration columns (header and values, no trailing comma). */
 void eigs_config_header(FILE *f);
-void eigs_config_row(FILE *f, const mfs_model_spec *s, const eigs_derived *dv);
+void eigs_config_row(FILE *f, const model_cmd *c, const mfs_model_spec *s, const eigs_derived *dv);
 
 /* The columns bound_alpha, alpha, lambda_fourier, kappa_fourier, theta_fourier
  * (degrees), each followed by a comma. */
 void eigs_put_estimates(FILE *f, const eigs_derived *dv, double lf, double kf, double tf);
 
-/* One number into a CSV row; dies (exit 1) rather than write a NaN. */
+/* One number into a CSV row, followed by ',' (or '\n' when last); dies
+ * (exit 1) rather than write an infinity; a NAN (undefined) is an empty cell. */
 void eigs_put(FILE *f, double v, int last);
+
+/* Die with the right message for a library status met while building the
+ * model (a particle file: the file, the line and the particle). */
+_Noreturn void model_die_status(const model_cmd *c, mfs_status st, size_t bad_point,
+                                const char *what);
 
 #endif

@@ -23,6 +23,7 @@ static const struct {
   {"bound", cmd_bound, "cheap element eigenvalue bound and critical time step (eqs 123-146)"},
   {"run", cmd_run, "explicit reference solver on a scene file (INI)"},
   {"map", cmd_map, "stability over a grid of states (stretches, stresses): PDE and kernel frames"},
+  {"check", cmd_check, "check your own discretization: stability, modes and time steps you can trust"},
   {"reproduce", cmd_reproduce, "regenerate the reproduced tables and figures into notebooks-data/"},
 };
 enum { NCMDS = sizeof cmds / sizeof cmds[0] };

@@ -314,6 +314,41 @@ static int window(int i, int n, int periodic, int B, int *out)
   return m;
 }
 
+/* The bound through a plan and its shape table: particle sets and perturbed
+ * lattices, whose points have no translates. */
+static mfs_status bound_by_plan(const mfs_model_spec *spec, mfs_bound_result *r, size_t *bad)
+{
+  mfs_particles *p = NULL;
+  mfs_quad *q = NULL;
+  mfs_plan *pl = NULL;
+  unsigned char *fixed = NULL;
+  const mfs_disc *disc = &spec->disc;
+  mfs_status st = mfs_disc_geometry(disc, &p, &q);
+  if (st != MFS_OK)
+    return st;
+  pl = mfs_plan_alloc(disc, p, q, &st);
+  if (!pl)
+    goto done;
+  st = mfs_plan_tabulate(pl, 1, bad);
+  if (st != MFS_OK)
+    goto done;
+  if (spec->fixed != MFS_FIX_NONE) {
+    st = MFS_ENOMEM;
+    fixed = malloc(p->n);
+    if (!fixed)
+      goto done;
+    for (size_t I = 0; I < p->n; I++)
+      fixed[I] = spec->fixed == MFS_FIX_MASK ? spec->fix_mask[I] != 0 : p->flags[I] != 0;
+  }
+  st = mfs_bound_plan(pl, &disc->material, fixed, r);
+done:
+  free(fixed);
+  mfs_plan_free(pl);
+  mfs_quad_free(q);
+  mfs_particles_free(p);
+  return st;
+}
+
 mfs_status mfs_bound_model(const mfs_model_spec *spec, mfs_bound_result *r, size_t *bad)
 {
   result_init(r);
@@ -328,12 +363,14 @@ mfs_status mfs_bound_model(const mfs_model_spec *spec, mfs_bound_result *r, size
   if (st != MFS_OK)
     return st;
   const mfs_disc *disc = &spec->disc;
+  if (mfs_disc_points(disc) || disc->source.perturb > 0.0 || spec->fixed == MFS_FIX_MASK)
+    return bound_by_plan(spec, r, bad);
   st = mfs_disc_geometry(disc, &p, &q);
   if (st != MFS_OK)
     goto done;
   int dim = disc->dim, periodic = disc->source.periodic;
   double dx = p->dx, dy = dim > 1 ? p->dy : 1.0;
-  double a = disc->dilation * dx;
+  double a = disc->support > 0.0 ? disc->support : disc->dilation * dx;
   int nx = p->nx, ny = dim > 1 ? p->ny : 1;
   int Bx = (int)ceil(a / dx) + 1, By = dim > 1 ? (int)ceil(a / dy) + 1 : 0;
   size_t wlx = (size_t)(2 * Bx + 2) < (size_t)nx ? (size_t)(2 * Bx + 2) : (size_t)nx;
@@ -504,10 +541,18 @@ mfs_status mfs_bound_fourier(const mfs_model_spec *s, int npts, int nangles, dou
   const mfs_disc *d = &s->disc;
   double dx = mfs_disc_dx(d);
   double dy = d->dim == 1 ? dx : mfs_disc_dy(d);
-  /* the infinite lattice of the model's spacings, Lagrangian kernel */
+  /* the infinite lattice of the model's spacings (a particle set: the line or
+   * square lattice of its mean spacing; a perturbed lattice: the unperturbed
+   * one), normalized to dx = 1 with the dilation a / dx; Lagrangian kernel */
   mfs_disp_spec ds = {.disc = *d, .stretch = 1.0};
+  mfs_lattice_kind lat = d->source.lattice;
+  if (mfs_disc_points(d))
+    lat = d->dim == 1 ? MFS_LATTICE_LINE : MFS_LATTICE_SQUARE;
   ds.disc.source = (mfs_source){
-    .lattice = d->source.lattice, .spacing = 1.0, .gamma = d->dim == 1 ? 1.0 : dy / dx};
+    .lattice = lat, .spacing = 1.0, .gamma = d->dim == 1 ? 1.0 : dy / dx};
+  if (d->support > 0.0)
+    ds.disc.dilation = d->support / dx;
+  ds.disc.support = 0.0;
   ds.disc.frame = MFS_FRAME_LAGRANGIAN;
   mfs_disp_plan *pl = mfs_disp_plan_alloc(&ds, &st);
   if (!pl)
@@ -578,4 +623,96 @@ double mfs_step_lambda(double lambda_power, double lambda_bound, size_t negative
 double mfs_dt_crit(double lambda_max)
 {
   return 2.0 / sqrt(lambda_max);
+}
+
+/* ------------------------------------------------------------------ */
+/* Gershgorin                                                          */
+
+static void gersh_init(mfs_gershgorin_result *r)
+{
+  *r = (mfs_gershgorin_result){.lambda = 0.0, .min_mass = INFINITY};
+}
+
+/* Row i (full dof f) with absolute row sum s and mass mi. */
+static void gersh_row(mfs_gershgorin_result *r, double s, double mi, size_t f)
+{
+  if (mi < r->min_mass) {
+    r->min_mass = mi;
+    r->argmin_mass = f;
+  }
+  if (!(mi > 0.0)) {
+    if (r->nonpositive++ == 0)
+      r->first_nonpositive = f;
+    return;
+  }
+  double lam = s / mi;
+  if (lam > r->lambda) {
+    r->lambda = lam;
+    r->argmax = f;
+  }
+}
+
+static void gersh_finish(mfs_gershgorin_result *r)
+{
+  if (r->nonpositive > 0)
+    r->lambda = NAN;
+}
+
+mfs_status mfs_gershgorin_csr(const mfs_csr *K, const double *m, const size_t *dof,
+                              mfs_gershgorin_result *r)
+{
+  gersh_init(r);
+  if (!K || !m || K->nrow != K->ncol)
+    return MFS_EINVAL;
+  for (size_t i = 0; i < K->nrow; i++) {
+    double s = 0.0;
+    for (size_t e = K->ptr[i]; e < K->ptr[i + 1]; e++)
+      s += fabs(K->val[e]);
+    gersh_row(r, s, m[i], dof ? dof[i] : i);
+  }
+  gersh_finish(r);
+  return MFS_OK;
+}
+
+mfs_status mfs_gershgorin_plan(const mfs_plan *pl, const mfs_material *mat,
+                               const unsigned char *fixed, mfs_gershgorin_result *r)
+{
+  gersh_init(r);
+  if (!pl || !mat || mfs_plan_order(pl) < 1)
+    return MFS_EINVAL;
+  const mfs_particles *p = mfs_plan_particles(pl);
+  int ndof = mfs_physics_ndof(mat->physics), nd2 = ndof * ndof;
+  double *ml = malloc(p->n * (size_t)ndof * sizeof *ml);
+  if (!ml)
+    return MFS_ENOMEM;
+  mfs_status st = mfs_assemble_mass_lumped(pl, mat, ml);
+  mfs_forms f = mfs_forms_stiffness(mat);
+  mfs_row row;
+  if (st == MFS_OK)
+    st = mfs_row_init(&row, pl, &f);
+  if (st != MFS_OK) {
+    free(ml);
+    return st;
+  }
+  for (size_t I = 0; I < p->n && st == MFS_OK; I++) {
+    if (fixed && fixed[I])
+      continue;
+    st = mfs_row_assemble(&row, pl, &f, I);
+    for (int a = 0; a < ndof && st == MFS_OK; a++) {
+      double s = 0.0;
+      for (size_t c = 0; c < row.len; c++) {
+        if (fixed && fixed[row.col[c]])
+          continue;
+        const double *blk = row.K + c * (size_t)nd2 + (size_t)a * ndof;
+        for (int b = 0; b < ndof; b++)
+          s += fabs(blk[b]);
+      }
+      size_t dof = I * (size_t)ndof + (size_t)a;
+      gersh_row(r, s, ml[dof], dof);
+    }
+  }
+  mfs_row_free(&row);
+  free(ml);
+  gersh_finish(r);
+  return st;
 }

@@ -89,12 +89,43 @@ mfs_status mfs_bound_plan(const mfs_plan *pl, const mfs_material *mat,
  * other, with the same neighbour offsets, volumes and fixed flags).  O(N)
  * time for N particles, O(N) memory for the particles and quadrature points
  * only.  Equals mfs_bound_plan on the assembled model up to rounding.
- * Returns MFS_OK, or the statuses of mfs_model_alloc (MFS_ESINGULAR with
- * *bad the failing quadrature point). */
+ * Particle sets, perturbed lattices and masks of fixed particles have no
+ * equivalent points: their bound goes through a plan and its shape table
+ * (O(N) time and memory).  Returns MFS_OK, or the statuses of
+ * mfs_model_alloc (MFS_ESINGULAR with *bad the failing quadrature point). */
 mfs_status mfs_bound_model(const mfs_model_spec *spec, mfs_bound_result *r, size_t *bad);
 
 /* The bound of an assembled model (its plan must not have been released). */
 mfs_status mfs_bound_of_model(const mfs_model *m, mfs_bound_result *r);
+
+/* The Gershgorin bound with the lumped mass: every eigenvalue of M^-1 K
+ * lies in a disc centred at K_ii / m_i of radius sum_{j != i} |K_ij| / m_i,
+ * so lambda_max <= max_i sum_j |K_ij| / m_i: a proven upper bound, one pass
+ * over the nonzeros, provided every m_i > 0.  It does not apply to a
+ * consistent mass (M^-1 K is then not available row by row) nor where some
+ * m_i <= 0 (MLS on strongly disordered sets): lambda is then NAN and the
+ * offending masses are counted. */
+typedef struct {
+  double lambda;            /* the bound (1/time^2), NAN where it does not apply */
+  size_t argmax;            /* the degree of freedom (particle * ndof + component) of the row */
+  size_t nonpositive;       /* degrees of freedom with m_i <= 0 */
+  size_t first_nonpositive; /* the first of them (as argmax) */
+  double min_mass;          /* the smallest m_i (kg, per unit thickness in 2D) */
+  size_t argmin_mass;       /* its degree of freedom */
+} mfs_gershgorin_result;
+
+/* From an assembled K (n x n, CSR) and lumped mass m (n); dof (n, or NULL:
+ * the identity) the full degree of freedom of each row.  MFS_OK, MFS_EINVAL. */
+mfs_status mfs_gershgorin_csr(const mfs_csr *K, const double *m, const size_t *dof,
+                              mfs_gershgorin_result *r);
+
+/* Streamed from a plan's shape table, row by row (mfs_row), without storing K:
+ * the stiffness of mat restricted to the particles not fixed (fixed: p->n
+ * flags, or NULL) with the lumped mass (mfs_assemble_mass_lumped).  The same
+ * value as mfs_gershgorin_csr on the assembled model up to the order of the
+ * sums.  MFS_OK, MFS_EINVAL (no table), MFS_ENOMEM. */
+mfs_status mfs_gershgorin_plan(const mfs_plan *pl, const mfs_material *mat,
+                               const unsigned char *fixed, mfs_gershgorin_result *r);
 
 /* Closed-form constants, lambda <= alpha c^2 / h^2 with h = a the support radius:
  *   dim 1: alpha = norm_1 max_z w'(z)^2/w(z)           (eq. 136; 12.42 for the cubic spline)
@@ -114,7 +145,9 @@ double mfs_bound_alpha_continuum(const mfs_kernel_type *k, int dim);
 #define MFS_PAPER_ALPHA2 15.00
 
 /* The Fourier (von Neumann) estimate: the largest omega^2 of plane waves on
- * the infinite uniform lattice with the spec's kernel, shape functions,
+ * the infinite uniform lattice (of a particle set: the line or square lattice
+ * of its mean spacing; of a perturbed lattice: the unperturbed one) with the
+ * spec's kernel, shape functions,
  * quadrature, dilation, mass and physics (mfs_dispersion.h), over kappa in
  * [0, kappa_max(theta)] sampled at npts points (then refined around the
  * largest sample by golden section), at nangles angles theta evenly

@@ -124,6 +124,63 @@ mfs_status mfs_eig_zero_modes(const mfs_pencil *P, double lambda_max, const mfs_
 mfs_status mfs_eig_is_null(const mfs_pencil *P, const double *r, double lambda_max, double tol,
                            int *is_null);
 
+/* Certification of a time step.  A Cholesky factorization LL' of
+ * sigma M - K that runs to completion proves sigma M - K positive
+ * semidefinite up to rounding, hence lambda_max <= sigma (1 + margin) and
+ * every step dt <= 2 / sqrt(sigma (1 + margin)) stable for the undamped
+ * central difference method.  The margin covers the rounding: the computed
+ * factor is the exact one of sigma M - K + E with |E_ij| <= g sqrt(A_ii A_jj),
+ * g = gamma_{k+1} / (1 - gamma_{k+1}), gamma_m = m u / (1 - m u), k the
+ * longest row of L (Higham, Accuracy and Stability of Numerical Algorithms,
+ * Thms 10.3 and 10.5), and E lies in the pattern of L + L' (w entries in its
+ * longest row), so E >= -w g diag(A) and diag(A) <= sigma diag(M); with a
+ * lumped mass diag(M) = M, and margin = w g + 5u (5u: forming sigma m_i -
+ * K_ii).  With a consistent mass the same margin bounds the rounding
+ * relative to diag(M), not M: proven up to a factor lambda_max(M^-1 diag M)
+ * on the margin, which the output says.  CHOLMOD's supernodal LL' (it stops
+ * at the first pivot that is not positive). */
+typedef struct {
+  int ok;            /* the factorization ran to completion */
+  double margin;     /* relative rounding margin of the proof (ok only) */
+  double factor_nnz; /* entries of the supernodal factor */
+  double flops;      /* floating-point operations of one factorization (CHOLMOD's count) */
+  int max_row;       /* k: the longest row of L */
+} mfs_certificate;
+
+/* Factor sigma M - K once.  MFS_OK (c->ok says whether it is positive
+ * definite), MFS_EINVAL (bad pencil or sigma <= 0), MFS_ENOMEM. */
+mfs_status mfs_eig_certify(const mfs_pencil *P, double sigma, mfs_certificate *c);
+
+/* The search of the smallest certified sigma from an estimate of lambda_max
+ * (a Lanczos value, which lies below lambda_max): sigma_0 = lambda_est
+ * (1 + gap), multiplied up by (1 + gap growth^k) after each failure, until a
+ * factorization succeeds or max_factorizations are spent; then `refine`
+ * bisection steps between the last failure (or lambda_est) and the success.
+ * One symbolic analysis, one numeric factorization per sigma. */
+typedef struct {
+  double lambda_est;      /* > 0 */
+  double gap;             /* first relative gap (default 1e-6) */
+  double growth;          /* gap growth after a failure (default 10) */
+  int max_factorizations; /* default 30 */
+  int refine;             /* bisection steps after the first success (default 0) */
+} mfs_certify_opts;
+
+typedef struct {
+  int ok;                 /* some sigma was certified */
+  double sigma;           /* the smallest certified sigma */
+  double lambda_upper;    /* sigma (1 + margin): a proven upper bound of lambda_max */
+  double margin;          /* of that certificate */
+  double sigma_failed;    /* the largest sigma whose factorization failed (0 if none):
+                             lambda_max >= sigma_failed up to rounding */
+  int factorizations;
+  double factor_nnz;
+  double flops;           /* of one factorization */
+} mfs_certify_result;
+
+/* MFS_OK (r->ok 0 if no sigma was certified), MFS_EINVAL, MFS_ENOMEM. */
+mfs_status mfs_eig_certify_search(const mfs_pencil *P, const mfs_certify_opts *o,
+                                  mfs_certify_result *r);
+
 /* The order of the largest problem mfs_eig_dense accepts. */
 #define MFS_EIG_DENSE_MAX 2000
 

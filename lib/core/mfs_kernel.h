@@ -16,7 +16,8 @@ extern "C" {
  * zero beyond), which the table entries mfs_kernel_<name> call, and which
  * hot loops can specialize on (mfs_shape.c).  Adding a kernel: a line here,
  * its inline formula, its table in mfs_kernel.c. */
-#define MFS_KERNEL_LIST(X) X(cubic) X(quartic) X(wendland2) X(quintic)
+#define MFS_KERNEL_LIST(X)                                                                   \
+  X(cubic) X(quartic) X(wendland2) X(quintic) X(spiky) X(poly6) X(wendland4) X(wendland6) X(m5)
 
 enum {
   MFS_KERNEL_ID_NONE = 0, /* a kernel defined elsewhere */
@@ -32,12 +33,22 @@ typedef struct {
   void (*eval)(double z, double *w, double *dw, double *d2w);
   double norm[3]; /* normalization constants for d = 1, 2, 3 */
   int id;         /* MFS_KERNEL_ID_<name> of a built-in kernel, 0 for another */
+  int cusp;       /* w'(0) != 0 (spiky): W has a cone at r = 0, its gradient there is
+                     taken as 0 (the peers leave the self pair out) and its second
+                     derivatives there are undefined: no Eulerian frame, no least
+                     squares (mfs_disc_check) */
 } mfs_kernel_type;
 
 extern const mfs_kernel_type mfs_kernel_cubic;     /* cubic B-spline (docs/user-guide.md, Conventions) */
 extern const mfs_kernel_type mfs_kernel_quartic;   /* 1 - 6z^2 + 8z^3 - 3z^4 */
 extern const mfs_kernel_type mfs_kernel_wendland2; /* Wendland C2: (1-z)^4 (1+4z) */
 extern const mfs_kernel_type mfs_kernel_quintic;   /* quintic spline, q = 3z */
+/* Kernels of the peer codes users bring (docs/conventions.md): */
+extern const mfs_kernel_type mfs_kernel_spiky;     /* (1-z)^3: LAMMPS MACHDYN, TrixiParticles */
+extern const mfs_kernel_type mfs_kernel_poly6;     /* (1-z^2)^3: TrixiParticles Poly6Kernel */
+extern const mfs_kernel_type mfs_kernel_wendland4; /* Wendland C4 (d <= 3): (1-z)^6 (1+6z+35/3 z^2) */
+extern const mfs_kernel_type mfs_kernel_wendland6; /* Wendland C6 (d <= 3): (1-z)^8 (1+8z+25z^2+32z^3) */
+extern const mfs_kernel_type mfs_kernel_m5;        /* Schoenberg's M5 quartic B-spline, q = 5z/2 */
 
 /* The quartic spline on z < 1. */
 static inline void mfs_kernel_quartic_poly(double z, double *w, double *dw, double *d2w)
@@ -103,6 +114,84 @@ static inline void mfs_kernel_quintic_w(double z, double *w, double *dw, double 
   *d2w = 9.0 * d2W;
 }
 
+/* The spiky kernel of Desbrun and Gascuel (1996), (1-z)^3: a cone at z = 0. */
+static inline void mfs_kernel_spiky_w(double z, double *w, double *dw, double *d2w)
+{
+  if (z < 1.0) {
+    double u = 1.0 - z;
+    *w = u * u * u;
+    *dw = -3.0 * u * u;
+    *d2w = 6.0 * u;
+  } else {
+    *w = *dw = *d2w = 0.0;
+  }
+}
+
+/* Mueller's poly6 kernel, (1-z^2)^3. */
+static inline void mfs_kernel_poly6_w(double z, double *w, double *dw, double *d2w)
+{
+  if (z < 1.0) {
+    double u = 1.0 - z * z;
+    *w = u * u * u;
+    *dw = -6.0 * z * u * u;
+    *d2w = -6.0 * u * (1.0 - 5.0 * z * z);
+  } else {
+    *w = *dw = *d2w = 0.0;
+  }
+}
+
+/* Wendland's C4 function for d <= 3, psi_{3,2} up to a constant. */
+static inline void mfs_kernel_wendland4_w(double z, double *w, double *dw, double *d2w)
+{
+  if (z < 1.0) {
+    double u = 1.0 - z, u2 = u * u, u4 = u2 * u2;
+    *w = u4 * u2 * (1.0 + 6.0 * z + 35.0 / 3.0 * z * z);
+    *dw = -56.0 / 3.0 * z * u4 * u * (1.0 + 5.0 * z);
+    *d2w = -56.0 / 3.0 * u4 * (1.0 + 4.0 * z - 35.0 * z * z);
+  } else {
+    *w = *dw = *d2w = 0.0;
+  }
+}
+
+/* Wendland's C6 function for d <= 3, psi_{3,3} up to a constant. */
+static inline void mfs_kernel_wendland6_w(double z, double *w, double *dw, double *d2w)
+{
+  if (z < 1.0) {
+    double u = 1.0 - z, u2 = u * u, u6 = u2 * u2 * u2;
+    *w = u6 * u2 * (1.0 + 8.0 * z + 25.0 * z * z + 32.0 * z * z * z);
+    *dw = -22.0 * z * u6 * u * (1.0 + 7.0 * z + 16.0 * z * z);
+    *d2w = -22.0 * u6 * (1.0 + 6.0 * z - 15.0 * z * z - 160.0 * z * z * z);
+  } else {
+    *w = *dw = *d2w = 0.0;
+  }
+}
+
+/* Schoenberg's M5 quartic B-spline in z = r/a, (1-z)^4 - 5 (3/5-z)^4_+ + 10 (1/5-z)^4_+
+ * (TrixiParticles' SchoenbergQuarticSplineKernel with a = 5h/2); not Lucy's quartic. */
+static inline void mfs_kernel_m5_w(double z, double *w, double *dw, double *d2w)
+{
+  static const double s[3] = {1.0, 0.6, 0.2}, c[3] = {1.0, -5.0, 10.0};
+  if (z < 0.2) { /* expanded (46/125 - 12/5 z^2 + 6 z^4): w'(0) = 0 exactly */
+    double z2 = z * z;
+    *w = 46.0 / 125.0 - 2.4 * z2 + 6.0 * z2 * z2;
+    *dw = -4.8 * z + 24.0 * z2 * z;
+    *d2w = -4.8 + 72.0 * z2;
+    return;
+  }
+  double W = 0.0, dW = 0.0, d2W = 0.0;
+  for (int i = 0; i < 3; i++) {
+    double u = s[i] - z;
+    if (u <= 0.0)
+      continue;
+    W += c[i] * u * u * u * u;
+    dW -= 4.0 * c[i] * u * u * u;
+    d2W += 12.0 * c[i] * u * u;
+  }
+  *w = W;
+  *dw = dW;
+  *d2w = d2W;
+}
+
 /* NULL-terminated list of all kernels, for lookup by name. */
 extern const mfs_kernel_type *const mfs_kernel_types[];
 
@@ -131,8 +220,9 @@ static inline mfs_kernel_value mfs_kernel_radial(const mfs_kernel_type *k, int d
   v.W = c * w;
   v.dW = c * dw / a;
   v.d2W = c * d2w / (a * a);
-  /* dw/z -> w''(0) as z -> 0 for kernels with w'(0) = 0 */
-  v.dW_r = (z > 0.0) ? c * (dw / z) / (a * a) : v.d2W;
+  /* dw/z -> w''(0) as z -> 0 for kernels with w'(0) = 0; a cusp has no
+   * gradient at its centre, taken as 0 (mfs_kernel_type.cusp) */
+  v.dW_r = (z > 0.0) ? c * (dw / z) / (a * a) : (k->cusp ? 0.0 : v.d2W);
   return v;
 }
 

@@ -3,9 +3,12 @@
 #include <gsl/gsl_errno.h>
 #include <gsl/gsl_rng.h>
 #include <math.h>
+#include <stdint.h>
 #include <stdlib.h>
 #include <string.h>
 
+#include "mfs_delaunay.h"
+#include "mfs_neighbor.h"
 #include "mfs_status.h"
 
 void mfs_particles_free(mfs_particles *p)
@@ -269,4 +272,287 @@ fail:
   if (status)
     *status = st;
   return NULL;
+}
+
+/* ------------------------------------------------------------------ */
+/* particle sets given as arrays                                        */
+
+static int set_ok(const mfs_point_set *s)
+{
+  if (!s || (s->dim != 1 && s->dim != 2) || !s->x || s->n < (size_t)s->dim + 1 ||
+      s->n > (size_t)INT32_MAX / 4)
+    return 0;
+  for (size_t i = 0; i < s->n * (size_t)s->dim; i++)
+    if (!isfinite(s->x[i]))
+      return 0;
+  if (s->vol)
+    for (size_t i = 0; i < s->n; i++)
+      if (!(s->vol[i] > 0.0) || !isfinite(s->vol[i]))
+        return 0;
+  return 1;
+}
+
+typedef struct {
+  double x;
+  size_t i;
+} key1;
+
+static int cmp_key1(const void *a, const void *b)
+{
+  double x = ((const key1 *)a)->x, y = ((const key1 *)b)->x;
+  return (x > y) - (x < y);
+}
+
+/* 1D: intervals between neighbours in x. */
+static int cells_1d(mfs_particles *p)
+{
+  size_t n = p->n;
+  key1 *k = malloc(n * sizeof *k);
+  p->conn = malloc((n - 1) * 2 * sizeof *p->conn);
+  p->cellx = malloc((n - 1) * 2 * sizeof *p->cellx);
+  if (!k || !p->conn || !p->cellx) {
+    free(k);
+    return MFS_ENOMEM;
+  }
+  for (size_t i = 0; i < n; i++)
+    k[i] = (key1){p->x[i], i};
+  qsort(k, n, sizeof *k, cmp_key1);
+  for (size_t c = 0; c + 1 < n; c++) {
+    if (!(k[c + 1].x > k[c].x)) { /* two particles at one place */
+      free(k);
+      return MFS_EINVAL;
+    }
+    p->conn[2 * c] = (int)k[c].i;
+    p->conn[2 * c + 1] = (int)k[c + 1].i;
+    p->cellx[2 * c] = k[c].x;
+    p->cellx[2 * c + 1] = k[c + 1].x;
+  }
+  p->ncell = n - 1;
+  p->flags[k[0].i] |= MFS_BND_XLO;
+  p->flags[k[n - 1].i] |= MFS_BND_XHI;
+  free(k);
+  return MFS_OK;
+}
+
+static int cells_2d(mfs_particles *p)
+{
+  size_t nt = 0;
+  int *tri = NULL;
+  int st = mfs_delaunay_2d(p->n, p->x, &nt, &tri);
+  if (st != MFS_OK)
+    return st;
+  p->conn = tri;
+  p->ncell = nt;
+  p->cellx = malloc(nt * 6 * sizeof *p->cellx);
+  if (!p->cellx)
+    return MFS_ENOMEM;
+  for (size_t c = 0; c < nt; c++)
+    for (int k = 0; k < 3; k++) {
+      p->cellx[6 * c + 2 * k] = p->x[2 * (size_t)tri[3 * c + k]];
+      p->cellx[6 * c + 2 * k + 1] = p->x[2 * (size_t)tri[3 * c + k] + 1];
+    }
+  return MFS_OK;
+}
+
+mfs_particles *mfs_particles_from_set(const mfs_point_set *s, int cells, mfs_status *status)
+{
+  mfs_status st = MFS_EINVAL;
+  mfs_particles *p = NULL;
+  if (!set_ok(s))
+    goto fail;
+  st = MFS_ENOMEM;
+  p = calloc(1, sizeof *p);
+  if (!p)
+    goto fail;
+  int dim = s->dim;
+  size_t n = s->n;
+  p->dim = dim;
+  p->n = n;
+  p->lattice = MFS_LATTICE_POINTS;
+  p->nx = (int)n;
+  p->ny = 1;
+  p->box.dim = dim;
+  p->x = malloc(n * dim * sizeof *p->x);
+  p->vol = malloc(n * sizeof *p->vol);
+  p->flags = calloc(n, 1);
+  p->ij = calloc(n * 2, sizeof *p->ij);
+  if (!p->x || !p->vol || !p->flags || !p->ij)
+    goto fail;
+  memcpy(p->x, s->x, n * dim * sizeof *p->x);
+  for (int k = 0; k < dim; k++) {
+    p->box.lo[k] = p->box.hi[k] = s->x[k];
+    for (size_t i = 1; i < n; i++) {
+      double v = s->x[i * dim + k];
+      p->box.lo[k] = v < p->box.lo[k] ? v : p->box.lo[k];
+      p->box.hi[k] = v > p->box.hi[k] ? v : p->box.hi[k];
+    }
+  }
+  p->cells = dim == 1 ? MFS_CELLS_QUAD : MFS_CELLS_TRI;
+  p->nvert = dim == 1 ? 2 : 3;
+  if (dim == 1) {
+    st = cells_1d(p);
+  } else {
+    st = mfs_convex_hull_2d(n, p->x, p->flags);
+    if (st == MFS_OK)
+      for (size_t i = 0; i < n; i++)
+        p->flags[i] = p->flags[i] ? MFS_BND_HULL : 0;
+    if (st == MFS_OK && (cells || !s->vol))
+      st = cells_2d(p);
+  }
+  if (st != MFS_OK)
+    goto fail;
+  if (s->vol) {
+    memcpy(p->vol, s->vol, n * sizeof *p->vol);
+  } else if (dim == 1) {
+    memset(p->vol, 0, n * sizeof *p->vol);
+    for (size_t c = 0; c < p->ncell; c++) {
+      double m = 0.5 * mfs_cell_measure(p, c);
+      p->vol[p->conn[2 * c]] += m;
+      p->vol[p->conn[2 * c + 1]] += m;
+    }
+  } else {
+    mfs_dual_areas(n, p->x, p->ncell, p->conn, p->vol);
+    st = MFS_EDOMAIN; /* a particle in no triangle (Qhull merged it away) */
+    for (size_t i = 0; i < n; i++)
+      if (!(p->vol[i] > 0.0))
+        goto fail;
+  }
+  if (s->spacing > 0.0) {
+    p->dx = s->spacing;
+  } else {
+    mfs_point_set t = *s;
+    t.vol = p->vol;
+    p->dx = mfs_point_set_spacing(&t);
+  }
+  p->dy = dim == 1 ? 0.0 : p->dx;
+  if (status)
+    *status = MFS_OK;
+  return p;
+fail:
+  mfs_particles_free(p);
+  if (status)
+    *status = st;
+  return NULL;
+}
+
+/* The k-th smallest of v[0..n) (Hoare's selection, O(n) expected; v is reordered). */
+static double select_kth(double *v, size_t n, size_t k)
+{
+  size_t lo = 0, hi = n - 1;
+  uint64_t seed = 0x9e3779b97f4a7c15ULL;
+  while (lo < hi) {
+    seed = seed * 6364136223846793005ULL + 1442695040888963407ULL;
+    double pivot = v[lo + (size_t)((seed >> 33) % (hi - lo + 1))];
+    size_t i = lo, j = hi;
+    while (i <= j) {
+      while (v[i] < pivot)
+        i++;
+      while (v[j] > pivot)
+        j--;
+      if (i <= j) {
+        double t = v[i];
+        v[i] = v[j];
+        v[j] = t;
+        i++;
+        if (j == 0)
+          break;
+        j--;
+      }
+    }
+    if (k <= j)
+      hi = j;
+    else if (k >= i)
+      lo = i;
+    else
+      return v[k];
+  }
+  return v[k];
+}
+
+double mfs_point_set_spacing(const mfs_point_set *s)
+{
+  if (!s || !s->vol || s->n < 1)
+    return NAN;
+  double *v = malloc(s->n * sizeof *v);
+  if (!v)
+    return NAN;
+  memcpy(v, s->vol, s->n * sizeof *v);
+  size_t k = s->n / 2;
+  double med = select_kth(v, s->n, k);
+  if (s->n % 2 == 0) /* the largest of the lower half */
+    med = 0.5 * (med + select_kth(v, k, k - 1));
+  free(v);
+  return s->dim == 1 ? med : sqrt(med);
+}
+
+mfs_status mfs_point_set_close_pair(const mfs_point_set *s, double r, int *found, size_t *i,
+                                    size_t *j)
+{
+  *found = 0;
+  *i = *j = 0;
+  if (!s || (s->dim != 1 && s->dim != 2) || !s->x || !(r > 0.0) || !isfinite(r))
+    return MFS_EINVAL;
+  size_t n = s->n;
+  if (n < 2)
+    return MFS_OK;
+  int dim = s->dim;
+  mfs_box box = {.dim = dim, .periodic = 0};
+  double meas = 1.0;
+  for (int k = 0; k < dim; k++) {
+    box.lo[k] = box.hi[k] = s->x[k];
+    for (size_t q = 1; q < n; q++) {
+      double v = s->x[q * dim + k];
+      box.lo[k] = v < box.lo[k] ? v : box.lo[k];
+      box.hi[k] = v > box.hi[k] ? v : box.hi[k];
+    }
+    double L = box.hi[k] - box.lo[k];
+    meas *= L > 0.0 ? L : 1.0;
+  }
+  /* cells of about the mean spacing, so that their count stays O(n), and at
+   * least 2r: a pair closer than r lies in one cell or two adjacent ones */
+  double R = dim == 1 ? meas / (double)n : sqrt(meas / (double)n);
+  R = R > 2.0 * r ? R : 2.0 * r;
+  mfs_status st;
+  mfs_grid *g = mfs_grid_alloc(dim, n, s->x, &box, R, &st);
+  if (!g)
+    return st;
+  int ny = dim == 2 ? g->nc[1] : 1, nx = g->nc[0];
+  double r2 = r * r;
+  size_t bi = 0, bj = 0;
+  for (int cy = 0; cy < ny; cy++)
+    for (int cx = 0; cx < nx; cx++) {
+      size_t c = (size_t)cy * (size_t)nx + (size_t)cx;
+      /* this cell and the forward half of its neighbours: each pair of cells once */
+      static const int off[5][2] = {{0, 0}, {1, 0}, {-1, 1}, {0, 1}, {1, 1}};
+      for (int o = 0; o < (dim == 2 ? 5 : 2); o++) {
+        int ox = cx + off[o][0], oy = cy + off[o][1];
+        if (ox < 0 || ox >= nx || oy >= ny)
+          continue;
+        size_t d = (size_t)oy * (size_t)nx + (size_t)ox;
+        for (size_t a = g->start[c]; a < g->start[c + 1]; a++) {
+          size_t b0 = o == 0 ? a + 1 : g->start[d];
+          for (size_t b = b0; b < g->start[d + 1]; b++) {
+            const double *xa = s->x + (size_t)g->item[a] * dim, *xb = s->x + (size_t)g->item[b] * dim;
+            double t = xa[0] - xb[0], d2 = t * t;
+            if (dim == 2) {
+              t = xa[1] - xb[1];
+              d2 += t * t;
+            }
+            if (d2 < r2) {
+              size_t p = (size_t)g->item[a], q = (size_t)g->item[b];
+              size_t lo = p < q ? p : q, hi = p < q ? q : p;
+              if (!*found || lo < bi || (lo == bi && hi < bj)) { /* the first pair by index */
+                bi = lo;
+                bj = hi;
+              }
+              *found = 1;
+            }
+          }
+        }
+      }
+    }
+  mfs_grid_free(g);
+  *i = bi;
+  *j = bj;
+  return MFS_OK;
 }

@@ -1,6 +1,8 @@
 /* Particle sets: lattices in 1D and 2D, finite or periodic boxes, seeded
  * random perturbation, particle volumes, and the background cells (intervals,
- * quadrilaterals, triangles) that quadrature rules are built on. */
+ * quadrilaterals, triangles) that quadrature rules are built on; and sets
+ * given as arrays (a user's file), with their volumes or the dual areas of
+ * their Delaunay triangulation (mfs_delaunay.h). */
 #ifndef MFS_PARTICLES_H
 #define MFS_PARTICLES_H
 
@@ -12,14 +14,21 @@
 extern "C" {
 #endif
 
-typedef enum { MFS_LATTICE_LINE, MFS_LATTICE_SQUARE, MFS_LATTICE_HEX } mfs_lattice_kind;
+/* MFS_LATTICE_POINTS: no lattice, a particle set given as arrays (1D or 2D). */
+typedef enum {
+  MFS_LATTICE_LINE,
+  MFS_LATTICE_SQUARE,
+  MFS_LATTICE_HEX,
+  MFS_LATTICE_POINTS
+} mfs_lattice_kind;
 
 /* How square cells are split: kept as quadrilaterals, cut by one diagonal
  * (paper 003 Fig. 12b), or by alternating diagonals (the star, Fig. 12c). */
 typedef enum { MFS_CELLS_QUAD, MFS_CELLS_TRI, MFS_CELLS_STAR } mfs_cell_kind;
 
-/* Boundary flags of a particle of a finite box. */
-enum { MFS_BND_XLO = 1, MFS_BND_XHI = 2, MFS_BND_YLO = 4, MFS_BND_YHI = 8 };
+/* Boundary flags of a particle of a finite box; of a particle set: the ends
+ * (1D, XLO and XHI) or the vertices of the convex hull (2D, HULL). */
+enum { MFS_BND_XLO = 1, MFS_BND_XHI = 2, MFS_BND_YLO = 4, MFS_BND_YHI = 8, MFS_BND_HULL = 16 };
 
 /* A box: [lo, hi] per direction, periodic (all directions) or not. */
 typedef struct {
@@ -96,6 +105,43 @@ typedef struct {
  * spec, MFS_ENOMEM) on failure. */
 mfs_particles *mfs_lattice_alloc(const mfs_lattice_spec *spec, mfs_status *status);
 void mfs_particles_free(mfs_particles *p);
+
+/* A particle set given as arrays, borrowed (a user's file). */
+typedef struct {
+  int dim;            /* 1 or 2 */
+  size_t n;           /* particles, at least dim + 1 */
+  const double *x;    /* n*dim coordinates (m) */
+  const double *vol;  /* n volumes (> 0; length in 1D, area in 2D), or NULL: the dual
+                         volumes of the set's cells (below) */
+  double spacing;     /* the typical spacing (m), mfs_point_set_spacing; 0: not known */
+} mfs_point_set;
+
+/* The typical spacing of a set with volumes: the median volume in 1D, the
+ * square root of the median volume in 2D (on a lattice: dx, or sqrt(dx dy);
+ * the median leaves out the halved volumes at the boundary).  NAN without
+ * volumes. */
+double mfs_point_set_spacing(const mfs_point_set *s);
+
+/* The particles of a set.  Cells: 1D the intervals between neighbouring
+ * particles (the set sorted by x); 2D the Delaunay triangles (Qhull,
+ * mfs_delaunay.h), built when cells != 0 or when the set has no volumes.
+ * Volumes: the set's own, or the cell dual (1D: half of each adjacent
+ * interval; 2D: mfs_dual_areas), which sum to the measure of the domain
+ * (the interval [min x, max x], the convex hull).  flags: the ends (1D),
+ * the convex hull vertices (2D, MFS_BND_HULL).  box: the bounding box (not
+ * periodic).  dx = dy: s->spacing, or the typical spacing of the volumes
+ * (mfs_point_set_spacing).  lattice MFS_LATTICE_POINTS, nx = n,
+ * ny = 1, ij all 0.  NULL with *status: MFS_EINVAL (dimension, fewer than
+ * dim + 1 particles, a coordinate not finite, a volume not positive and
+ * finite, two particles at one place in 1D), MFS_EDOMAIN (2D: no
+ * triangulation, all particles on a line), MFS_ENOMEM. */
+mfs_particles *mfs_particles_from_set(const mfs_point_set *s, int cells, mfs_status *status);
+
+/* Two particles of the set closer than r > 0, found with cell lists (O(n)):
+ * *found = 1 and *i < *j their indices, or *found = 0.  MFS_OK, MFS_EINVAL,
+ * MFS_ENOMEM. */
+mfs_status mfs_point_set_close_pair(const mfs_point_set *s, double r, int *found, size_t *i,
+                                    size_t *j);
 
 /* Measure (length or area) of cell c, from its vertex coordinates. */
 double mfs_cell_measure(const mfs_particles *p, size_t c);

@@ -13,18 +13,19 @@
 #define LINE (1u << MFS_LATTICE_LINE)
 #define SQUARE (1u << MFS_LATTICE_SQUARE)
 #define HEX (1u << MFS_LATTICE_HEX)
+#define POINTS (1u << MFS_LATTICE_POINTS)
 
 const mfs_quad_type mfs_quad_nodal = {
-  .name = "nodal", .dims = D1 | D2, .lattices = LINE | SQUARE | HEX, .cells = MFS_CELLS_QUAD,
+  .name = "nodal", .dims = D1 | D2, .lattices = LINE | SQUARE | HEX | POINTS, .cells = MFS_CELLS_QUAD,
   .node_share = 1.0};
 const mfs_quad_type mfs_quad_stress = {
-  .name = "stress", .dims = D1, .lattices = LINE, .cells = MFS_CELLS_QUAD, .node_share = 0.5,
+  .name = "stress", .dims = D1, .lattices = LINE | POINTS, .cells = MFS_CELLS_QUAD, .node_share = 0.5,
   .centres = 1};
 const mfs_quad_type mfs_quad_stress_quad = {
   .name = "stress-quad", .dims = D2, .lattices = SQUARE, .cells = MFS_CELLS_QUAD,
   .node_share = 0.5, .centres = 1};
 const mfs_quad_type mfs_quad_stress_tri = {
-  .name = "stress-tri", .dims = D2, .lattices = SQUARE, .cells = MFS_CELLS_TRI,
+  .name = "stress-tri", .dims = D2, .lattices = SQUARE | POINTS, .cells = MFS_CELLS_TRI,
   .node_share = 1.0 / 3.0, .centres = 1};
 const mfs_quad_type mfs_quad_stress_star = {
   .name = "stress-star", .dims = D2, .lattices = SQUARE, .cells = MFS_CELLS_STAR,
@@ -34,7 +35,7 @@ const mfs_quad_type mfs_quad_stress_hex = {
   .node_share = 1.0 / 3.0, .centres = 1};
 
 #define GAUSS(n)                                                                             \
-  {.name = "gauss" #n, .dims = D1 | D2, .lattices = LINE | SQUARE | HEX,                    \
+  {.name = "gauss" #n, .dims = D1 | D2, .lattices = LINE | SQUARE | HEX | POINTS,           \
    .cells = MFS_CELLS_QUAD, .gauss_n = n}
 const mfs_quad_type mfs_quad_gauss[10] = {GAUSS(1), GAUSS(2), GAUSS(3), GAUSS(4), GAUSS(5),
                                           GAUSS(6), GAUSS(7), GAUSS(8), GAUSS(9), GAUSS(10)};
@@ -57,7 +58,7 @@ const mfs_quad_type *mfs_quad_find(const char *name)
 
 int mfs_quad_applies(const mfs_quad_type *t, int dim, mfs_lattice_kind lattice)
 {
-  if (!t || dim < 1 || dim > 3 || (unsigned)lattice > MFS_LATTICE_HEX)
+  if (!t || dim < 1 || dim > 3 || (unsigned)lattice > MFS_LATTICE_POINTS)
     return 0;
   return (t->dims >> dim & 1u) && (t->lattices >> lattice & 1u);
 }
@@ -161,6 +162,8 @@ mfs_quad *mfs_quad_alloc(const mfs_quad_type *t, const mfs_particles *p, mfs_sta
   /* the particles' cells must be the ones the rule is defined on */
   int cells_ok = p->dim == 1 || p->lattice == MFS_LATTICE_HEX || p->cells == t->cells;
   if (t->centres && !cells_ok)
+    goto fail;
+  if ((t->centres || t->gauss_n > 0) && p->ncell == 0) /* a set built without cells */
     goto fail;
   st = MFS_ENOMEM;
   q = calloc(1, sizeof *q);

@@ -9,7 +9,10 @@
  *   stress-hex   hexagonal lattice, particles and triangle centroids, a third each (Fig. 12d)
  *   gaussN       N Gauss points per direction in every background cell
  *                (gauss1, gauss2, ...); triangles: centroid for N = 1,
- *                collapsed N x N Gauss rule otherwise. */
+ *                collapsed N x N Gauss rule otherwise.
+ * On a particle set (MFS_LATTICE_POINTS) the cells are its intervals (1D)
+ * or Delaunay triangles (2D): nodal, stress (1D), stress-tri (2D: stress
+ * points at the triangle centroids) and gaussN apply. */
 #ifndef MFS_QUAD_H
 #define MFS_QUAD_H
 

@@ -42,6 +42,8 @@ mfs_status mfs_row_init(mfs_row *r, const mfs_plan *pl, const mfs_forms *f)
   int need2 = f->euler != MFS_EULER_NONE || f->ls_beta > 0.0;
   if (mfs_plan_order(pl) < (need2 ? 2 : 1))
     return MFS_EINVAL;
+  if (need2 && mfs_plan_disc(pl)->kernel->cusp) /* no second derivative at the cone */
+    return MFS_ENOTSUP;
   const mfs_particles *p = mfs_plan_particles(pl);
   int euler2 = p->dim == 2 && f->physics == MFS_PHYS_PLANE_STRAIN;
   if (f->euler != MFS_EULER_NONE && !(p->dim == 1 && f->physics == MFS_PHYS_SCALAR) && !euler2)

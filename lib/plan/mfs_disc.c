@@ -39,9 +39,39 @@ mfs_disc mfs_disc_default(void)
                     .rcond_min = 0.0};
 }
 
+/* The spacing of a particle set (mfs_disc_dx). */
+static double set_spacing(const mfs_point_set *ps)
+{
+  int dim = ps->dim;
+  if (ps->spacing > 0.0)
+    return ps->spacing;
+  if (ps->n < 2 || (dim != 1 && dim != 2))
+    return NAN;
+  double lo[2], hi[2];
+  for (int k = 0; k < dim; k++) {
+    lo[k] = hi[k] = ps->x[k];
+    for (size_t i = 1; i < ps->n; i++) {
+      double v = ps->x[i * dim + k];
+      lo[k] = v < lo[k] ? v : lo[k];
+      hi[k] = v > hi[k] ? v : hi[k];
+    }
+  }
+  if (dim == 1)
+    return (hi[0] - lo[0]) / (double)(ps->n - 1);
+  double A = 0.0;
+  if (ps->vol)
+    for (size_t i = 0; i < ps->n; i++)
+      A += ps->vol[i];
+  else
+    A = (hi[0] - lo[0]) * (hi[1] - lo[1]);
+  return sqrt(A / (double)ps->n);
+}
+
 double mfs_disc_dx(const mfs_disc *d)
 {
   const mfs_source *s = &d->source;
+  if (s->points)
+    return set_spacing(s->points);
   if (s->nx == 0)
     return s->spacing > 0.0 ? s->spacing : 1.0;
   return s->periodic ? s->lx / s->nx : s->lx / (s->nx - 1);
@@ -52,6 +82,8 @@ double mfs_disc_dy(const mfs_disc *d)
   const mfs_source *s = &d->source;
   if (d->dim == 1)
     return 0.0;
+  if (s->points)
+    return set_spacing(s->points);
   if (s->nx == 0) {
     double dx = mfs_disc_dx(d);
     if (s->lattice == MFS_LATTICE_HEX)
@@ -63,7 +95,7 @@ double mfs_disc_dy(const mfs_disc *d)
 
 double mfs_disc_support(const mfs_disc *d)
 {
-  return d->dilation * mfs_disc_dx(d);
+  return d->support > 0.0 ? d->support : d->dilation * mfs_disc_dx(d);
 }
 
 double mfs_disc_rcond(const mfs_disc *d)
@@ -85,9 +117,17 @@ mfs_status mfs_disc_check(const mfs_disc *d, const char **field)
   if (!d || (d->dim != 1 && d->dim != 2))
     BAD("dim");
   const mfs_source *s = &d->source;
-  if ((unsigned)s->lattice > MFS_LATTICE_HEX || (d->dim == 1) != (s->lattice == MFS_LATTICE_LINE))
+  if (s->points) {
+    if (s->lattice != MFS_LATTICE_POINTS)
+      BAD("source.lattice");
+    if (s->points->dim != d->dim || !s->points->x || s->points->n < (size_t)d->dim + 1)
+      BAD("source.points");
+    if (!(d->support > 0.0)) /* a set has no spacing to scale a dilation with */
+      BAD("support");
+  } else if ((unsigned)s->lattice > MFS_LATTICE_HEX ||
+             (d->dim == 1) != (s->lattice == MFS_LATTICE_LINE)) {
     BAD("source.lattice");
-  if (s->nx == 0) { /* the infinite lattice */
+  } else if (s->nx == 0) { /* the infinite lattice */
     if (!(s->spacing >= 0.0) || !isfinite(s->spacing))
       BAD("source.spacing");
     if (!(s->gamma >= 0.0) || !isfinite(s->gamma))
@@ -103,7 +143,11 @@ mfs_status mfs_disc_check(const mfs_disc *d, const char **field)
       BAD("source.ly");
     if (d->dim == 2 && s->lattice != MFS_LATTICE_SQUARE)
       BAD("source.lattice"); /* finite boxes are square lattices */
+    if (!(s->perturb >= 0.0 && s->perturb < 0.5))
+      BAD("source.perturb");
   }
+  if (!(d->support >= 0.0) || !isfinite(d->support))
+    BAD("support");
   if (!d->kernel)
     BAD("kernel");
   if (!(d->dilation > 0.0) || !isfinite(d->dilation))
@@ -113,6 +157,9 @@ mfs_status mfs_disc_check(const mfs_disc *d, const char **field)
   if (!d->quadrature || !mfs_quad_applies(d->quadrature, d->dim, s->lattice))
     BAD("quadrature");
   if ((unsigned)d->frame > MFS_FRAME_EULERIAN_CONSISTENT)
+    BAD("frame");
+  /* the Eulerian terms need second derivatives, which a cusp lacks at r = 0 */
+  if (d->kernel->cusp && d->frame != MFS_FRAME_LAGRANGIAN)
     BAD("frame");
   const mfs_material *m = &d->material;
   if (m->physics != MFS_PHYS_SCALAR && m->physics != MFS_PHYS_PLANE_STRAIN)
@@ -129,7 +176,7 @@ mfs_status mfs_disc_check(const mfs_disc *d, const char **field)
     BAD("material.initial_stress");
   if (!(d->rcond_min >= 0.0) || !(d->rcond_min < 1.0))
     BAD("rcond_min");
-  if (s->nx > 0 && s->periodic) {
+  if (s->nx > 0 && s->periodic && !s->points) {
     /* the star pattern tiles a periodic box only with even counts */
     if (d->quadrature->cells == MFS_CELLS_STAR && d->dim == 2 && ((s->nx & 1) || (s->ny & 1)))
       BAD((s->nx & 1) ? "source.nx" : "source.ny");
@@ -171,6 +218,18 @@ mfs_status mfs_disc_geometry(const mfs_disc *d, mfs_particles **p, mfs_quad **q)
     return st;
   if (mfs_disc_infinite(d))
     return MFS_EINVAL;
+  if (mfs_disc_points(d)) {
+    const mfs_quad_type *t = d->quadrature;
+    *p = mfs_particles_from_set(d->source.points, mfs_quad_has_stress_points(t), &st);
+    if (!*p)
+      return st;
+    *q = mfs_quad_alloc(t, *p, &st);
+    if (!*q) {
+      mfs_particles_free(*p);
+      *p = NULL;
+    }
+    return st;
+  }
   double dx = mfs_disc_dx(d), dy = mfs_disc_dy(d);
   mfs_lattice_spec ls = {.dim = d->dim,
                          .lattice = d->source.lattice,
@@ -179,7 +238,9 @@ mfs_status mfs_disc_geometry(const mfs_disc *d, mfs_particles **p, mfs_quad **q)
                          .dx = dx,
                          .gamma = d->dim == 1 ? 1.0 : dy / dx,
                          .periodic = d->source.periodic,
-                         .cells = d->quadrature->cells};
+                         .cells = d->quadrature->cells,
+                         .perturb = d->source.perturb,
+                         .seed = d->source.seed};
   return build(d, &ls, p, q);
 }
 

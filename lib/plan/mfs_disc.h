@@ -5,11 +5,12 @@
  *
  *   source      where the particles come from: an infinite lattice (the
  *               unit-cell analyses: stencil, dispersion; spacing dx and the
- *               square lattice's gamma = dy/dx) or a finite box of nx x ny
+ *               square lattice's gamma = dy/dx), a finite box of nx x ny
  *               lattice particles on [0, lx] x [0, ly], periodic or not
- *               (dx = lx/(nx-1), or lx/nx when periodic)
+ *               (dx = lx/(nx-1), or lx/nx when periodic), perturbed or not,
+ *               or a particle set given as arrays (a user's file)
  *   kernel      the weight function (mfs_kernel.h), support radius
- *               a = dilation * dx (docs/user-guide.md "Conventions")
+ *               a = dilation * dx (docs/user-guide.md "Conventions"), or `support` itself
  *   shape       shape functions (mfs_shape.h)
  *   quadrature  the rule (mfs_quad.h)
  *   frame       Lagrangian or Eulerian kernel (paper 003 section 3.4)
@@ -45,13 +46,19 @@ const char *mfs_frame_name(mfs_frame f);
 mfs_status mfs_frame_parse(const char *name, mfs_frame *f);
 
 typedef struct {
-  mfs_lattice_kind lattice; /* line (1D), square or hex (2D) */
+  mfs_lattice_kind lattice; /* line (1D), square or hex (2D); MFS_LATTICE_POINTS with `points` */
   int nx, ny;               /* particles per direction of a finite box (ny: 2D);
                                nx = 0: the infinite lattice */
   double lx, ly;            /* lengths of the finite box (m) */
   int periodic;             /* the finite box is periodic */
   double spacing;           /* infinite lattice: the spacing dx (m; 0 means 1) */
   double gamma;             /* infinite square lattice: dy/dx (0 means 1) */
+  double perturb;           /* finite box: each coordinate moved by up to perturb * dx, in
+                               [0, 0.5) (boundary particles along their boundary only;
+                               mfs_lattice_spec) */
+  unsigned long seed;       /* ... with this GSL mt19937 seed */
+  const mfs_point_set *points; /* a particle set (borrowed; lattice MFS_LATTICE_POINTS):
+                               nx, ny, lx, ly, periodic, perturb are not used */
 } mfs_source;
 
 typedef struct {
@@ -59,6 +66,8 @@ typedef struct {
   mfs_source source;
   const mfs_kernel_type *kernel;
   double dilation;                 /* D: support radius a = D dx */
+  double support;                  /* the support radius a itself (m; 0: a = D dx); required
+                                      for a particle set, which has no lattice spacing */
   const mfs_shape_type *shape;
   const mfs_quad_type *quadrature;
   mfs_frame frame;
@@ -74,7 +83,8 @@ mfs_disc mfs_disc_default(void);
 /* MFS_OK, or MFS_EINVAL with *field (if field is not NULL) the name of the
  * first offending member ("dim", "source.lattice", "source.nx", "source.ny",
  * "source.lx", "source.ly", "source.spacing", "source.gamma", "kernel",
- * "dilation", "shape", "quadrature", "frame", "material.physics",
+ * "dilation", "support", "source.points", "source.perturb", "shape", "quadrature", "frame",
+ * "material.physics",
  * "material.modulus", "material.density", "material.poisson",
  * "material.initial_stress", "rcond_min"), or MFS_ETOOSMALL with *field
  * "source.nx" or "source.ny" for a periodic box not longer than two support
@@ -84,10 +94,20 @@ mfs_status mfs_disc_check(const mfs_disc *d, const char **field);
 /* 1 if the source is the infinite lattice. */
 static inline int mfs_disc_infinite(const mfs_disc *d)
 {
-  return d->source.nx == 0;
+  return d->source.nx == 0 && !d->source.points;
 }
 
-/* The spacings dx and dy (dy = 0 in 1D) and the support radius a = D dx. */
+/* 1 if the source is a particle set given as arrays. */
+static inline int mfs_disc_points(const mfs_disc *d)
+{
+  return d->source.points != NULL;
+}
+
+/* The spacings dx and dy (dy = 0 in 1D) and the support radius (support, or
+ * a = D dx).  A particle set's spacing is its points->spacing (the typical
+ * spacing of its volumes, mfs_point_set_spacing, which the caller computes
+ * once); where that is 0, an estimate: (max x - min x) / (n - 1) in 1D,
+ * sqrt(A / n) in 2D with A the sum of the volumes or the bounding box's area. */
 double mfs_disc_dx(const mfs_disc *d);
 double mfs_disc_dy(const mfs_disc *d);
 double mfs_disc_support(const mfs_disc *d);
@@ -103,9 +123,12 @@ double mfs_disc_rcond(const mfs_disc *d);
 double mfs_disc_plan_entries(const mfs_disc *d, double n, double *points);
 
 /* The particles and quadrature points of a finite source (the lattice of
- * the box, cut as the rule needs).  MFS_OK, the statuses of mfs_disc_check
- * (MFS_EINVAL also for an infinite source), MFS_ENOMEM; *p and *q are NULL
- * on failure. */
+ * the box, cut as the rule needs, perturbed as the source says; or the
+ * particle set, with its cells where the rule needs them:
+ * mfs_particles_from_set).  MFS_OK, the statuses of mfs_disc_check
+ * (MFS_EINVAL also for an infinite source) and of mfs_particles_from_set
+ * (MFS_EDOMAIN: no triangulation), MFS_ENOMEM; *p and *q are NULL on
+ * failure. */
 mfs_status mfs_disc_geometry(const mfs_disc *d, mfs_particles **p, mfs_quad **q);
 
 /* A periodic box of nx x ny particles of the infinite lattice of d (spacing

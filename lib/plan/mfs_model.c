@@ -34,11 +34,15 @@ mfs_status mfs_model_spec_check(const mfs_model_spec *s, const char **field)
       *field = "disc.source";
     return MFS_EINVAL;
   }
-  int bad = s->fixed != MFS_FIX_NONE && s->fixed != MFS_FIX_ENDS && s->fixed != MFS_FIX_BOUNDARY;
-  bad |= d->source.periodic && s->fixed != MFS_FIX_NONE;
+  int pts = mfs_disc_points(d);
+  int bad = s->fixed != MFS_FIX_NONE && s->fixed != MFS_FIX_ENDS &&
+            s->fixed != MFS_FIX_BOUNDARY && s->fixed != MFS_FIX_MASK;
+  bad |= !pts && d->source.periodic && s->fixed != MFS_FIX_NONE;
   bad |= d->dim == 2 && s->fixed == MFS_FIX_ENDS;
+  bad |= s->fixed == MFS_FIX_MASK && !s->fix_mask;
   /* fixing the boundary must leave free particles */
-  bad |= s->fixed != MFS_FIX_NONE && (d->source.nx < 3 || (d->dim == 2 && d->source.ny < 3));
+  bad |= !pts && s->fixed != MFS_FIX_NONE && s->fixed != MFS_FIX_MASK &&
+         (d->source.nx < 3 || (d->dim == 2 && d->source.ny < 3));
   if (bad) {
     if (field)
       *field = "fixed";
@@ -135,7 +139,7 @@ mfs_model *mfs_model_alloc(const mfs_model_spec *spec, mfs_status *status, size_
   const mfs_disc *d = &spec->disc;
   m->dx = mfs_disc_dx(d);
   m->dy = mfs_disc_dy(d);
-  m->a = d->dilation * m->dx;
+  m->a = mfs_disc_support(d);
   m->c = sqrt(d->material.modulus / d->material.density);
   m->ndof = mfs_physics_ndof(d->material.physics);
   m->mat = d->material;
@@ -157,9 +161,12 @@ mfs_model *mfs_model_alloc(const mfs_model_spec *spec, mfs_status *status, size_
   m->dof = malloc(nfull * sizeof *m->dof);
   if (!m->fixed || !keep || !m->dof)
     goto done;
-  if (spec->fixed != MFS_FIX_NONE)
+  if (spec->fixed == MFS_FIX_MASK)
     for (size_t I = 0; I < np; I++)
-      m->fixed[I] = m->p->flags[I] != 0; /* 1D: the ends; 2D: the boundary */
+      m->fixed[I] = spec->fix_mask[I] != 0;
+  else if (spec->fixed != MFS_FIX_NONE)
+    for (size_t I = 0; I < np; I++)
+      m->fixed[I] = m->p->flags[I] != 0; /* 1D: the ends; 2D: the boundary (a set: its hull) */
   m->n = 0;
   for (size_t I = 0; I < np; I++)
     for (int k = 0; k < m->ndof; k++) {
@@ -232,8 +239,9 @@ done:
 
 int mfs_model_rigid_fields(const mfs_model *m, double *r)
 {
-  if (m->spec.fixed != MFS_FIX_NONE)
-    return 0;
+  for (size_t I = 0; I < m->p->n; I++)
+    if (m->fixed[I])
+      return 0;
   size_t n = m->n;
   if (m->ndof == 1) {
     if (r)
@@ -241,9 +249,14 @@ int mfs_model_rigid_fields(const mfs_model *m, double *r)
         r[i] = 1.0;
     return 1;
   }
-  int nr = m->spec.disc.source.periodic ? 2 : 3; /* a rotation is not periodic */
+  int periodic = m->spec.disc.source.periodic && !mfs_disc_points(&m->spec.disc);
+  int nr = periodic ? 2 : 3; /* a rotation is not periodic */
   if (r) {
-    double cx = 0.5 * m->spec.disc.source.lx, cy = 0.5 * m->spec.disc.source.ly;
+    double cx = 0.0, cy = 0.0; /* the centroid: any centre spans the same fields */
+    for (size_t I = 0; I < m->p->n; I++) {
+      cx += m->p->x[2 * I] / (double)m->p->n;
+      cy += m->p->x[2 * I + 1] / (double)m->p->n;
+    }
     for (size_t i = 0; i < n; i++) {
       size_t f = m->dof[i], I = f / 2;
       int comp = (int)(f % 2);

@@ -36,13 +36,15 @@ extern "C" {
 
 typedef enum {
   MFS_FIX_NONE = 0,
-  MFS_FIX_ENDS,    /* 1D: the particles at x = 0 and x = lx */
-  MFS_FIX_BOUNDARY /* every particle on the boundary (1D: the ends) */
+  MFS_FIX_ENDS,     /* 1D: the particles at x = 0 and x = lx (a set: its ends) */
+  MFS_FIX_BOUNDARY, /* every particle on the boundary (1D: the ends; a 2D set: its convex hull) */
+  MFS_FIX_MASK      /* the particles with fix_mask[I] != 0 */
 } mfs_fix_kind;
 
 typedef struct {
-  mfs_disc disc;      /* a finite source: disc.source.nx, ny, lx, ly, periodic */
+  mfs_disc disc;      /* a finite source: disc.source.nx, ny, lx, ly, periodic; or a set */
   mfs_fix_kind fixed; /* MFS_FIX_ENDS is 1D only; none when periodic */
+  const unsigned char *fix_mask; /* MFS_FIX_MASK: one flag per particle (borrowed) */
 } mfs_model_spec;
 
 /* The defaults: 1D, 41 nodes on [0, 1], cubic kernel, MLS, D = 2, gauss2,
@@ -54,7 +56,9 @@ mfs_model_spec mfs_model_spec_default(void);
  * see itself through the box) with *field naming the member ("disc." and
  * mfs_disc_check's name); or MFS_EINVAL with *field "disc.source" (an
  * infinite source), "fixed" (unknown, periodic and fixed, ends in 2D, fewer
- * than 3 particles per direction when fixed).  field may be NULL. */
+ * than 3 particles per direction when fixed, a mask without fix_mask or on
+ * a lattice of another size than the particles').  field may be NULL.
+ * mfs_model_alloc also refuses (MFS_EINVAL) a model with every particle fixed. */
 mfs_status mfs_model_spec_check(const mfs_model_spec *s, const char **field);
 
 typedef struct {
@@ -88,7 +92,7 @@ void mfs_model_release_plan(mfs_model *m);
 /* The rigid-body fields of the model that are admissible (satisfy the
  * fixed conditions): none when particles are fixed; else the constant field
  * (scalar), or the two translations and, unless periodic, the in-plane
- * rotation about the centre (plane strain).  Returns their count (0 to 3)
+ * rotation about the centroid of the particles (plane strain).  Returns their count (0 to 3)
  * and, if r is not NULL, writes them as count vectors of length m->n,
  * r[k * n + i]. */
 int mfs_model_rigid_fields(const mfs_model *m, double *r);

@@ -47,7 +47,7 @@ mfs_plan *mfs_plan_alloc(const mfs_disc *d, const mfs_particles *p, const mfs_qu
   pl->disc.dim = p->dim; /* the particles decide; the source of d is not used */
   pl->p = p;
   pl->q = q;
-  pl->a = d->dilation * p->dx;
+  pl->a = d->support > 0.0 ? d->support : d->dilation * p->dx;
   pl->rcond = 1.0;
   g = mfs_grid_alloc(p->dim, p->n, p->x, &p->box, pl->a, &st);
   if (!g)

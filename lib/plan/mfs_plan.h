@@ -40,7 +40,8 @@ typedef struct {
 } mfs_point;
 
 /* The neighbour structure of quadrature points q among particles p for the
- * kernel, shape, dilation (a = D p->dx) and rcond threshold of d; p and q
+ * kernel, shape, support radius (d->support, or a = D p->dx) and rcond
+ * threshold of d; p and q
  * are borrowed and must outlive the plan.  NULL with *status: MFS_EINVAL
  * (bad d, dimensions of p and q differ), MFS_ETOOSMALL (a periodic box not
  * longer than 2a), MFS_ENOMEM. */
@@ -71,7 +72,7 @@ const mfs_quad *mfs_plan_quad(const mfs_plan *pl);
 const mfs_disc *mfs_plan_disc(const mfs_plan *pl);
 int mfs_plan_order(const mfs_plan *pl);         /* 0 before tabulation */
 int mfs_plan_ncomp(const mfs_plan *pl);
-double mfs_plan_support(const mfs_plan *pl);    /* a = D dx */
+double mfs_plan_support(const mfs_plan *pl);    /* a: d->support or D dx */
 double mfs_plan_rcond(const mfs_plan *pl);      /* smallest reciprocal condition number met */
 size_t mfs_plan_max_neighbours(const mfs_plan *pl);
 size_t mfs_plan_nnz(const mfs_plan *pl);        /* sum of the list lengths */
