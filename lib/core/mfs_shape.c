@@ -677,8 +677,13 @@ static int kb_eval(const mfs_shape_ctx *c, int nn, const double *d, const double
   return st;
 }
 
-static int rl_eval(const mfs_shape_ctx *c, int nn, const double *d, const double *v, int self,
-                   int order, double *out, double *work, double *rcond)
+/* The symmetrized SPH gradient o_J = V_J grad W_J - psi_J sum_K V_K grad W_K
+ * (paper 000 eq. 33, paper 004 eq. 47), psi_J the reference: delta at the
+ * point's own particle, the V-weighted Shepard function elsewhere; values
+ * the V-weighted Shepard functions.  correct: normalized by the
+ * Randles-Libersky matrix (paper 000 eq. 34, paper 004 eqs 68-69). */
+static int sym_gradient(const mfs_shape_ctx *c, int nn, const double *d, const double *v, int self,
+                        int order, double *out, double *work, double *rcond, int correct)
 {
   int dim = c->dim, os = mfs_shape_ncomp(dim, order), st = 1 + dim + dim * dim;
   double *kw = work, *sh = work + (size_t)nn * st; /* sh: V-weighted Shepard, order <= 1 */
@@ -708,10 +713,101 @@ static int rl_eval(const mfs_shape_ctx *c, int nn, const double *d, const double
         }
     }
   }
+  if (!correct)
+    return MFS_OK;
   double rc2;
   int s2 = correct_gradient(c, nn, d, order, out, os, &rc2);
   *rcond = rc2 < *rcond ? rc2 : *rcond;
   return s2;
+}
+
+static int rl_eval(const mfs_shape_ctx *c, int nn, const double *d, const double *v, int self,
+                   int order, double *out, double *work, double *rcond)
+{
+  return sym_gradient(c, nn, d, v, self, order, out, work, rcond, 1);
+}
+
+static int sphs_eval(const mfs_shape_ctx *c, int nn, const double *d, const double *v, int self,
+                     int order, double *out, double *work, double *rcond)
+{
+  return sym_gradient(c, nn, d, v, self, order, out, work, rcond, 0);
+}
+
+/* Corrected derivatives, method 2 (paper 004 eqs 63-64): with p_J = (1,
+ * (X_J - X)/a) and A = sum_J W_J p_J p_J^T, q_J = A^-1 p_J, the values are
+ * the MLS functions q_J[0] W_J (the Shepard factor of eq. 63 cancels) and
+ * the gradient is the diffuse (Nayroles) derivative G_kJ = q_J[k+1] W_J / a,
+ * which is not the derivative of the values.  Order 2: d_n G_kJ from
+ * d_n q_J = A^-1 (d_n p_J - d_n A q_J), d_n p_J = -e_(n+1) / a. */
+static int cd2_eval(const mfs_shape_ctx *c, int nn, const double *d, const double *v, int self,
+                    int order, double *out, double *work, double *rcond)
+{
+  (void)v;
+  (void)self;
+  int dim = c->dim, m = 1 + dim, os = mfs_shape_ncomp(dim, order), st = 1 + dim + dim * dim;
+  double ia = 1.0 / c->a, A[MAXM * MAXM] = {0}, dA[MAXD][MAXM * MAXM] = {{0}};
+  kernel_values(c, nn, d, order, work);
+  for (int J = 0; J < nn; J++) {
+    const double *k = work + J * st;
+    double p[MAXM] = {1.0};
+    for (int i = 1; i < m; i++)
+      p[i] = d[J * dim + i - 1] * ia;
+    for (int i = 0; i < m; i++)
+      for (int j = 0; j < m; j++) {
+        A[i * m + j] += k[0] * p[i] * p[j];
+        for (int n = 0; n < dim && order >= 2; n++) {
+          double dpi = i == n + 1 ? -ia : 0.0, dpj = j == n + 1 ? -ia : 0.0;
+          dA[n][i * m + j] += k[1 + n] * p[i] * p[j] + k[0] * (dpi * p[j] + p[i] * dpj);
+        }
+      }
+  }
+  double L[MAXM * MAXM] = {0}, Ainv[MAXM * MAXM];
+  *rcond = 0.0;
+  if (cholesky(m, A, L))
+    return MFS_ESINGULAR;
+  for (int j = 0; j < m; j++) {
+    double e[MAXM] = {0};
+    e[j] = 1.0;
+    chol_solve(m, L, e);
+    for (int i = 0; i < m; i++)
+      Ainv[i * m + j] = e[i];
+  }
+  *rcond = rcond_from(m, A, Ainv);
+  if (*rcond < c->rcond_min || *rcond == 0.0)
+    return MFS_ESINGULAR;
+  for (int J = 0; J < nn; J++) {
+    const double *k = work + J * st;
+    double p[MAXM] = {1.0}, q[MAXM] = {0};
+    for (int i = 1; i < m; i++)
+      p[i] = d[J * dim + i - 1] * ia;
+    for (int i = 0; i < m; i++) {
+      q[i] = 0.0;
+      for (int j = 0; j < m; j++)
+        q[i] += Ainv[i * m + j] * p[j];
+    }
+    double *o = out + (size_t)J * os;
+    o[0] = q[0] * k[0];
+    for (int l = 0; l < dim; l++)
+      o[1 + l] = q[1 + l] * k[0] * ia;
+    if (order < 2)
+      continue;
+    for (int n = 0; n < dim; n++) {
+      double r[MAXM], dq[MAXM];
+      for (int i = 0; i < m; i++) {
+        r[i] = i == n + 1 ? -ia : 0.0;
+        for (int j = 0; j < m; j++)
+          r[i] -= dA[n][i * m + j] * q[j];
+      }
+      for (int i = 0; i < m; i++) {
+        dq[i] = 0.0;
+        for (int j = 0; j < m; j++)
+          dq[i] += Ainv[i * m + j] * r[j];
+      }
+      for (int l = 0; l < dim; l++)
+        o[1 + dim + l * dim + n] = (dq[1 + l] * k[0] + q[1 + l] * k[1 + n]) * ia;
+    }
+  }
+  return MFS_OK;
 }
 
 const mfs_shape_type mfs_shape_sph = {.name = "sph",
@@ -728,16 +824,27 @@ const mfs_shape_type mfs_shape_mls = {.name = "mls",
                                       .partition_of_unity = 1,
                                       .linear_complete = 1,
                                       .gradient_is_derivative = 1,
+                                      .gradient_linear = 1,
                                       .eval = mls_eval,
                                       .dpos_1d = mls_dpos,
                                       .gather_1d = mls_gather_1d};
-const mfs_shape_type mfs_shape_kb = {.name = "kb", .partition_of_unity = 1, .eval = kb_eval};
-const mfs_shape_type mfs_shape_rl = {
-  .name = "rl", .uses_volumes = 1, .partition_of_unity = 1, .eval = rl_eval};
+const mfs_shape_type mfs_shape_kb = {
+  .name = "kb", .partition_of_unity = 1, .gradient_linear = 1, .eval = kb_eval};
+const mfs_shape_type mfs_shape_rl = {.name = "rl",
+                                     .uses_volumes = 1,
+                                     .partition_of_unity = 1,
+                                     .gradient_linear = 1,
+                                     .uses_self = 1,
+                                     .eval = rl_eval};
+const mfs_shape_type mfs_shape_sphs = {
+  .name = "sphs", .uses_volumes = 1, .partition_of_unity = 1, .uses_self = 1, .eval = sphs_eval};
+const mfs_shape_type mfs_shape_cd2 = {
+  .name = "cd2", .partition_of_unity = 1, .linear_complete = 1, .gradient_linear = 1,
+  .eval = cd2_eval};
 
-const mfs_shape_type *const mfs_shape_types[] = {&mfs_shape_sph, &mfs_shape_shepard,
-                                                  &mfs_shape_mls, &mfs_shape_kb, &mfs_shape_rl,
-                                                  NULL};
+const mfs_shape_type *const mfs_shape_types[] = {
+  &mfs_shape_sph, &mfs_shape_shepard, &mfs_shape_mls, &mfs_shape_kb,
+  &mfs_shape_rl,  &mfs_shape_sphs,    &mfs_shape_cd2, NULL};
 
 const mfs_shape_type *mfs_shape_find(const char *name)
 {
