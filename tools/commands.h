@@ -8,5 +8,6 @@ int cmd_reproduce(int argc, char **argv);
 int cmd_eigs(int argc, char **argv);
 int cmd_bound(int argc, char **argv);
 int cmd_run(int argc, char **argv);
+int cmd_static(int argc, char **argv);
 
 #endif

@@ -22,6 +22,7 @@ static const struct {
    "extreme eigenvalues, zero-energy modes and critical time step of a finite model"},
   {"bound", cmd_bound, "cheap element eigenvalue bound and critical time step (eqs 123-146)"},
   {"run", cmd_run, "explicit reference solver on a scene file (INI)"},
+  {"static", cmd_static, "static elasticity with the seven particle methods of paper 004"},
   {"reproduce", cmd_reproduce, "regenerate the reproduced tables and figures into notebooks-data/"},
 };
 enum { NCMDS = sizeof cmds / sizeof cmds[0] };

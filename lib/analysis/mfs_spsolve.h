@@ -35,6 +35,10 @@ typedef struct {
   const char *name;
   int symmetric_only; /* A must be symmetric positive definite */
   int (*solve)(const mfs_csr *A, const double *b, double *x, mfs_spsolve_info *info);
+  /* The symmetric saddle-point system of mfs_spsolve_constrained without
+   * forming it (NULL: the solver factors the saddle-point matrix itself). */
+  int (*solve_constrained)(const mfs_csr *A, const mfs_csr *C, const double *b, const double *g,
+                           double *x, double *lambda, mfs_spsolve_info *info);
 } mfs_spsolve_type;
 
 extern const mfs_spsolve_type mfs_spsolve_cholmod;
@@ -49,6 +53,24 @@ const mfs_spsolve_type *mfs_spsolve_find(const char *name);
  * filled as far as the solve got. */
 mfs_status mfs_spsolve(const mfs_spsolve_type *t, const mfs_csr *A, const double *b, double *x,
                        double rcond_min, mfs_spsolve_info *info);
+
+/* The saddle-point system of a constrained problem (Lagrange multipliers):
+ *
+ *   [ A   Ct^T ] [ x      ]   [ b ]      A n x n, C and Ct m x n (Ct = NULL: Ct = C,
+ *   [ C   0    ] [ lambda ] = [ g ]      the symmetric case)
+ *
+ * With Ct = NULL and a solver with solve_constrained (cholmod): A must be
+ * symmetric positive semidefinite with no null vector that C leaves
+ * unconstrained; A + rho C^T C (rho = max |A_ij| / max |(C^T C)_ij|) is
+ * factored by CHOLMOD and the m x m Schur complement C (A + rho C^T C)^-1
+ * C^T by LAPACK (dense: m is the number of multipliers); rcond is the
+ * smaller of the two estimates.  Otherwise the (n + m) square matrix is
+ * assembled and solved by t->solve (a symmetric_only solver: MFS_EINVAL).
+ * lambda (m values) may be NULL.  backward is that of the whole system.
+ * Statuses as mfs_spsolve. */
+mfs_status mfs_spsolve_constrained(const mfs_spsolve_type *t, const mfs_csr *A, const mfs_csr *C,
+                                   const mfs_csr *Ct, const double *b, const double *g, double *x,
+                                   double *lambda, double rcond_min, mfs_spsolve_info *info);
 
 #ifdef __cplusplus
 }

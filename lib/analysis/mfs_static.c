@@ -550,6 +550,7 @@ done:
 const mfs_static_problem mfs_static_beam = {
   .name = "beam",
   .what = "cantilever [0, L] x [-D/2, D/2], tip load P (eqs 120-126)",
+  .counts = 2,
   .check = beam_check,
   .build = beam_build,
   .exact = beam_exact,
@@ -558,6 +559,7 @@ const mfs_static_problem mfs_static_beam = {
 const mfs_static_problem mfs_static_plate_hole = {
   .name = "plate-hole",
   .what = "quarter plate [0, b]^2 with a hole of radius a, remote tension (eqs 127-130)",
+  .counts = 1,
   .check = plate_check,
   .build = plate_build,
   .exact = plate_exact,
@@ -1162,27 +1164,49 @@ done:
 }
 
 /* K += w B_test^T D B_trial over the point's neighbours, into the block's
- * dense local matrix Kl (2 nu x 2 nu, local indices loc[]). */
+ * dense local matrix Kl (2 nu x 2 nu, local indices loc[]); DB: room for
+ * 6 nn doubles (D B_J of each trial neighbour).  Bubnov: the upper blocks
+ * and their transposes. */
 static void point_stiffness(const mfs_static *m, const pev *e, double w, const int *loc,
-                            size_t nu, double *Kl)
+                            size_t nu, double *Kl, double *DB)
 {
   const double *D = m->D;
   const double d11 = D[0], d12 = D[1], d22 = D[4], d33 = D[8];
   const double *Bt = pev_test_B(e), *Br = e->Btr;
   const int *idx = e->idx;
-  size_t ld = 2 * nu;
-  for (int I = 0; I < e->nn; I++) {
+  const size_t ld = 2 * nu;
+  const int nn = e->nn, sym = !e->has_test;
+  for (int J = 0; J < nn; J++) {
+    const double *bj = Br + 4 * J;
+    double *p = DB + 6 * J;
+    p[0] = d11 * bj[0];
+    p[1] = d12 * bj[1];
+    p[2] = d33 * bj[2];
+    p[3] = d33 * bj[3];
+    p[4] = d12 * bj[0];
+    p[5] = d22 * bj[1];
+  }
+  for (int I = 0; I < nn; I++) {
     const double *bi = Bt + 4 * I;
     double aI = w * bi[0], bI = w * bi[1], cI = w * bi[2], dI = w * bi[3];
-    double *row0 = Kl + 2 * (size_t)loc[idx[I]] * ld, *row1 = row0 + ld;
-    for (int J = 0; J < e->nn; J++) {
-      const double *bj = Br + 4 * J;
-      double aJ = bj[0], bJ = bj[1], cJ = bj[2], dJ = bj[3];
+    size_t ci = 2 * (size_t)loc[idx[I]];
+    double *row0 = Kl + ci * ld, *row1 = row0 + ld;
+    for (int J = sym ? I : 0; J < nn; J++) {
+      const double *p = DB + 6 * J;
       size_t cj = 2 * (size_t)loc[idx[J]];
-      row0[cj] += aI * d11 * aJ + cI * d33 * cJ;
-      row0[cj + 1] += aI * d12 * bJ + cI * d33 * dJ;
-      row1[cj] += bI * d12 * aJ + dI * d33 * cJ;
-      row1[cj + 1] += bI * d22 * bJ + dI * d33 * dJ;
+      double k00 = aI * p[0] + cI * p[2], k01 = aI * p[1] + cI * p[3];
+      double k10 = bI * p[4] + dI * p[2], k11 = bI * p[5] + dI * p[3];
+      row0[cj] += k00;
+      row0[cj + 1] += k01;
+      row1[cj] += k10;
+      row1[cj + 1] += k11;
+      if (sym && J != I) { /* K_JI = K_IJ^T */
+        double *r0 = Kl + cj * ld, *r1 = r0 + ld;
+        r0[ci] += k00;
+        r0[ci + 1] += k10;
+        r1[ci] += k01;
+        r1[ci + 1] += k11;
+      }
     }
   }
 }
@@ -1193,7 +1217,7 @@ static int assemble_stiffness(mfs_static *m, mfs_static_where *where)
   mfs_nlist *U = NULL;
   size_t *nptr = NULL;
   int *nidx = NULL, *loc = NULL, *rowmark = NULL;
-  double *Kl = NULL;
+  double *Kl = NULL, *DB = NULL;
   pev e;
   cursor c;
   cursor_init(&c, m->q, m->q_block);
@@ -1214,7 +1238,8 @@ static int assemble_stiffness(mfs_static *m, mfs_static_where *where)
   loc = malloc(n * sizeof *loc);
   rowmark = malloc(n * sizeof *rowmark);
   Kl = malloc((4 * maxu * maxu + 1) * sizeof *Kl);
-  if (!loc || !rowmark || !Kl)
+  DB = malloc((6 * maxnn + 6) * sizeof *DB);
+  if (!loc || !rowmark || !Kl || !DB)
     goto done;
   int r = 0;
   st = MFS_OK;
@@ -1231,7 +1256,7 @@ static int assemble_stiffness(mfs_static *m, mfs_static_where *where)
         size_t nc = c.nl->ptr[L + 1] - c.nl->ptr[L];
         st = pev_point(&e, m, m->q->x + 2 * Q, m->q->node[Q], cand, nc, where);
         if (st == MFS_OK)
-          point_stiffness(m, &e, m->q->w[Q], loc, nu, Kl);
+          point_stiffness(m, &e, m->q->w[Q], loc, nu, Kl, DB);
       }
       /* scatter the block into K */
       for (size_t k = 0; k < nu && st == MFS_OK; k++) {
@@ -1262,6 +1287,7 @@ done:
   free(loc);
   free(rowmark);
   free(Kl);
+  free(DB);
   return st;
 }
 
@@ -1475,59 +1501,10 @@ done:
 
 static int solve_kkt(mfs_static *m)
 {
-  size_t nd = 2 * m->p->n, N = nd + m->m;
-  int st = MFS_ENOMEM;
-  mfs_csr *A = NULL;
-  double *rhs = malloc(N * sizeof *rhs), *x = malloc(N * sizeof *x);
-  size_t *cnt = calloc(nd + 1, sizeof *cnt);
-  if (!rhs || !x || !cnt)
-    goto done;
-  /* rows of K with the columns of C_test^T appended */
-  for (size_t e = 0; e < m->Cte->ptr[m->m]; e++)
-    cnt[m->Cte->idx[e]]++;
-  size_t nnz = m->K->ptr[nd] + m->Cte->ptr[m->m] + m->Ctr->ptr[m->m];
-  A = mfs_csr_alloc(N, N, nnz);
-  if (!A)
-    goto done;
-  size_t pos = 0;
-  for (size_t i = 0; i < nd; i++) {
-    for (size_t e = m->K->ptr[i]; e < m->K->ptr[i + 1]; e++) {
-      A->idx[pos] = m->K->idx[e];
-      A->val[pos++] = m->K->val[e];
-    }
-    pos += cnt[i]; /* filled below */
-    A->ptr[i + 1] = pos;
-  }
-  for (size_t i = 0; i < nd; i++) /* the next free slot of row i */
-    cnt[i] = A->ptr[i + 1] - cnt[i];
-  for (size_t k = 0; k < m->m; k++)
-    for (size_t e = m->Cte->ptr[k]; e < m->Cte->ptr[k + 1]; e++) {
-      size_t i = (size_t)m->Cte->idx[e];
-      A->idx[cnt[i]] = (int)(nd + k);
-      A->val[cnt[i]++] = m->Cte->val[e];
-    }
-  for (size_t k = 0; k < m->m; k++) {
-    for (size_t e = m->Ctr->ptr[k]; e < m->Ctr->ptr[k + 1]; e++) {
-      A->idx[pos] = m->Ctr->idx[e];
-      A->val[pos++] = m->Ctr->val[e];
-    }
-    A->ptr[nd + k + 1] = pos;
-  }
-  memcpy(rhs, m->f, nd * sizeof *rhs);
-  memcpy(rhs + nd, m->g, m->m * sizeof *rhs);
-  m->solver = m->s.solver ? m->s.solver : &mfs_spsolve_umfpack;
-  st = MFS_EINVAL;
-  if (m->solver->symmetric_only) /* the saddle-point system is indefinite */
-    goto done;
-  st = mfs_spsolve(m->solver, A, rhs, x, m->s.solve_rcond_min, &m->sinfo);
-  if (st == MFS_OK)
-    memcpy(m->u, x, nd * sizeof *x);
-done:
-  free(rhs);
-  free(x);
-  free(cnt);
-  mfs_csr_free(A);
-  return st;
+  int sym = m->s.method->test == NULL;
+  m->solver = m->s.solver ? m->s.solver : (sym ? &mfs_spsolve_cholmod : &mfs_spsolve_umfpack);
+  return mfs_spsolve_constrained(m->solver, m->K, m->Ctr, sym ? NULL : m->Cte, m->f, m->g, m->u,
+                                 NULL, m->s.solve_rcond_min, &m->sinfo);
 }
 
 mfs_status mfs_static_solve(mfs_static *m)
@@ -1563,13 +1540,36 @@ void mfs_static_get_info(const mfs_static *m, mfs_static_info *info)
                             .solver = m->solver ? m->solver->name : "",
                             .rcond = m->solved ? m->sinfo.rcond : NAN,
                             .backward = m->solved ? m->sinfo.backward : NAN,
-                            .factor_nnz = m->solved ? m->sinfo.factor_nnz : NAN,
-                            .asymmetry = NAN};
-  if (m->K) {
-    double amax;
-    double as = mfs_csr_asymmetry(m->K, &amax);
-    info->asymmetry = amax > 0.0 ? as / amax : 0.0;
+                            .factor_nnz = m->solved ? m->sinfo.factor_nnz : NAN};
+}
+
+/* K_ij by binary search in the sorted node columns of row i (K's rows are
+ * sorted by construction). */
+static double csr_sorted_get(const mfs_csr *A, size_t i, int j)
+{
+  size_t lo = A->ptr[i], hi = A->ptr[i + 1];
+  while (lo < hi) {
+    size_t mid = lo + (hi - lo) / 2;
+    if (A->idx[mid] < j)
+      lo = mid + 1;
+    else
+      hi = mid;
   }
+  return lo < A->ptr[i + 1] && A->idx[lo] == j ? A->val[lo] : 0.0;
+}
+
+double mfs_static_asymmetry(const mfs_static *m)
+{
+  if (!m || !m->K)
+    return NAN;
+  const mfs_csr *K = m->K;
+  double as = 0.0, amax = 0.0;
+  for (size_t i = 0; i < K->nrow; i++)
+    for (size_t e = K->ptr[i]; e < K->ptr[i + 1]; e++) {
+      amax = fmax(amax, fabs(K->val[e]));
+      as = fmax(as, fabs(K->val[e] - csr_sorted_get(K, (size_t)K->idx[e], (int)i)));
+    }
+  return amax > 0.0 ? as / amax : 0.0;
 }
 
 size_t mfs_static_nnodes(const mfs_static *m)
@@ -1659,8 +1659,8 @@ static void acc_norms(void *ctx, size_t Q, const double *x, double w, const doub
     }
   a->num_e += w * en;
   a->den_e += w * ee;
-  a->max_du = fmax(a->max_du, hypot(du0, du1));
-  a->max_u = fmax(a->max_u, hypot(u[0], u[1]));
+  a->max_du = fmax(a->max_du, fmax(fabs(du0), fabs(du1)));
+  a->max_u = fmax(a->max_u, fmax(fabs(u[0]), fabs(u[1])));
   if (a->uh) {
     a->uh[2 * Q] = uh[0];
     a->uh[2 * Q + 1] = uh[1];

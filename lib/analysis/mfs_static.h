@@ -99,6 +99,7 @@ typedef struct mfs_static_spec mfs_static_spec;
 typedef struct {
   const char *name;
   const char *what; /* one line for --help */
+  int counts;       /* node counts it takes: 2 (nx, ny: the beam) or 1 (nx: the plate) */
   /* the problem's members of the spec: NULL, or the first bad one */
   const char *(*check)(const mfs_static_spec *s);
   /* the particles, background cells, boundary and Gauss points of m (internal) */
@@ -179,9 +180,11 @@ typedef struct {
   int eliminated;       /* the constraints were eliminations (no multipliers) */
   const char *solver;
   double rcond, backward, factor_nnz;
-  double asymmetry;     /* max |K_IJ - K_JI| / max |K_IJ| */
 } mfs_static_info;
 void mfs_static_get_info(const mfs_static *m, mfs_static_info *info);
+
+/* max |K_IJ - K_JI| / max |K_IJ| of the assembled K (NAN before assembly). */
+double mfs_static_asymmetry(const mfs_static *m);
 
 /* The errors of the solution (eqs 114-119), relative. */
 typedef struct {
@@ -189,7 +192,7 @@ typedef struct {
   double L2;            /* eqs 116-117, 5 x 5 Gauss per background cell */
   double energy;        /* eqs 118-119, the same points */
   double energy_nodal;  /* the energy error at the nodes with the volumes (diagnostic) */
-  double max_nodal;     /* max_I |u^h(x_I) - u(x_I)| / max_I |u(x_I)| */
+  double max_nodal;     /* max over nodes and components |u^h(x_I) - u(x_I)| / max |u(x_I)| */
 } mfs_static_errors;
 mfs_status mfs_static_error_norms(mfs_static *m, mfs_static_errors *e, mfs_static_where *where);
 

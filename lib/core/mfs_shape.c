@@ -428,6 +428,83 @@ static int mls_fast_order1(const mfs_shape_ctx *c, int nn, const double *d, doub
   return MFS_OK;
 }
 
+/* The corrected Shepard gradient (kb) with gradients only, in 1D or 2D,
+ * written with scalars as mls_fast_order1 (same formulas as kb_eval: the
+ * Shepard functions, then G = C^-1 h with C = sum_J h_J (X_J - X)^T). */
+static int kb_fast_order1(const mfs_shape_ctx *c, int nn, const double *d, double *out,
+                          double *work, double *rcond)
+{
+  const int dim = c->dim, os = 1 + dim;
+  const double ia = 1.0 / c->a;
+  double cn = c->kernel->norm[dim - 1] * ia;
+  if (dim == 2)
+    cn *= ia;
+  double S = 0.0, Sx = 0.0, Sy = 0.0;
+  for (int J = 0; J < nn; J++) {
+    double px = d[J * dim] * ia, py = dim == 2 ? d[J * dim + 1] * ia : 0.0;
+    double z = sqrt(px * px + py * py), w = 0.0, dw = 0.0, d2w;
+    if (z < 1.0)
+      c->kernel->eval(z, &w, &dw, &d2w);
+    double W = cn * w, t = z > 0.0 ? -cn * dw / z * ia : -cn * d2w * ia;
+    double *o = work + 3 * J;
+    o[0] = W;
+    o[1] = t * px;
+    o[2] = t * py;
+    S += W;
+    Sx += o[1];
+    Sy += o[2];
+  }
+  *rcond = 0.0;
+  if (!(S > 0.0))
+    return MFS_ESINGULAR;
+  double iS = 1.0 / S, c00 = 0, c01 = 0, c10 = 0, c11 = 0;
+  for (int J = 0; J < nn; J++) { /* Shepard values and gradients h_J; C = sum h d^T */
+    double *o = work + 3 * J, *r = out + (size_t)J * os;
+    double phi = o[0] * iS;
+    r[0] = phi;
+    o[1] = (o[1] - phi * Sx) * iS;
+    o[2] = (o[2] - phi * Sy) * iS;
+    double dx = d[J * dim], dy = dim == 2 ? d[J * dim + 1] : 0.0;
+    c00 += o[1] * dx;
+    c01 += o[1] * dy;
+    c10 += o[2] * dx;
+    c11 += o[2] * dy;
+  }
+  double i00, i01 = 0.0, i10 = 0.0, i11 = 0.0, na, ni;
+  if (dim == 1) {
+    if (c00 == 0.0)
+      return MFS_ESINGULAR;
+    i00 = 1.0 / c00;
+    na = fabs(c00);
+    ni = fabs(i00);
+  } else {
+    double det = c00 * c11 - c01 * c10;
+    if (det == 0.0)
+      return MFS_ESINGULAR;
+    i00 = c11 / det;
+    i01 = -c01 / det;
+    i10 = -c10 / det;
+    i11 = c00 / det;
+    na = fmax(fabs(c00) + fabs(c10), fabs(c01) + fabs(c11));
+    ni = fmax(fabs(i00) + fabs(i10), fabs(i01) + fabs(i11));
+  }
+  double rc = 1.0 / (na * ni);
+  *rcond = isfinite(rc) ? rc : 0.0;
+  if (*rcond < c->rcond_min || *rcond == 0.0)
+    return MFS_ESINGULAR;
+  for (int J = 0; J < nn; J++) {
+    const double *o = work + 3 * J;
+    double *r = out + (size_t)J * os;
+    if (dim == 1) {
+      r[1] = i00 * o[1];
+    } else {
+      r[1] = i00 * o[1] + i01 * o[2];
+      r[2] = i10 * o[1] + i11 * o[2];
+    }
+  }
+  return MFS_OK;
+}
+
 /* 1D linear MLS fused with the gather (mfs_shape_type.gather_1d): the
  * arithmetic of mls_fast_order1 in 1D, in one pass over the candidates.
  * The body is specialized for each built-in kernel (MFS_KERNEL_LIST): with
@@ -666,6 +743,8 @@ static int kb_eval(const mfs_shape_ctx *c, int nn, const double *d, const double
 {
   (void)v;
   (void)self;
+  if (order == 1 && c->dim <= 2)
+    return kb_fast_order1(c, nn, d, out, work, rcond);
   int os = mfs_shape_ncomp(c->dim, order);
   kernel_values(c, nn, d, order, work);
   int st = mls_core(c, 1, nn, d, work, NULL, order, out, os, rcond);
