@@ -211,10 +211,10 @@ static mfs_static *run_model(const mfs_static_spec *s, const static_opts *o, int
   if (st == MFS_ESINGULAR)
     cli_die(2,
             "--dilation %g: too few nodes in the support for method %s (kernel %s, a = %g m): "
-            "singular %s moment matrix at (%g, %g) m with %d nodes; use a larger dilation or "
-            "more nodes",
+            "singular %s at (%g, %g) m with %d node%s; use a larger dilation or more nodes",
             s->dilation, s->method->name, s->kernel->name, in.support,
-            s->method->jb_normal ? "JB normalization (eq. 52) or" : "", w.x[0], w.x[1], w.nn);
+            s->method->jb_normal ? "JB normalization (eq. 52) or moment matrix" : "moment matrix",
+            w.x[0], w.x[1], w.nn, w.nn == 1 ? "" : "s");
   if (st != MFS_OK)
     cli_die(1, "assembling method %s: %s", s->method->name, mfs_strerror(st));
   if (!solve)
@@ -227,11 +227,14 @@ static mfs_static *run_model(const mfs_static_spec *s, const static_opts *o, int
             "use umfpack",
             o->solver->name, s->method->name,
             in.eliminated ? "a non-symmetric one" : "an indefinite one (Lagrange multipliers)");
+  if (st == MFS_ESYSTEM && !(in.rcond > 0.0))
+    cli_die(1, "the linear system of method %s (%zu nodes, %s) is singular: a zero or negative pivot",
+            s->method->name, in.nodes, in.solver);
   if (st == MFS_ESYSTEM)
     cli_die(1,
-            "the linear system of method %s (%zu nodes, %s) is singular: rcond %g below "
-            "--solve-rcond-min %g or a non-positive pivot",
-            s->method->name, in.nodes, in.solver, isnan(in.rcond) ? 0.0 : in.rcond,
+            "the linear system of method %s (%zu nodes, %s) is singular: rcond estimate %g "
+            "below --solve-rcond-min %g",
+            s->method->name, in.nodes, in.solver, in.rcond,
             s->solve_rcond_min > 0.0 ? s->solve_rcond_min : 1e-15);
   if (st != MFS_OK)
     cli_die(1, "solving method %s: %s", s->method->name, mfs_strerror(st));

@@ -1538,9 +1538,13 @@ void mfs_static_get_info(const mfs_static *m, mfs_static_info *info)
                             .symmetric = m->s.method->test == NULL,
                             .eliminated = m->eliminated,
                             .solver = m->solver ? m->solver->name : "",
-                            .rcond = m->solved ? m->sinfo.rcond : NAN,
+                            .rcond = m->solver ? m->sinfo.rcond : NAN,
                             .backward = m->solved ? m->sinfo.backward : NAN,
-                            .factor_nnz = m->solved ? m->sinfo.factor_nnz : NAN};
+                            .factor_nnz = m->solver ? m->sinfo.factor_nnz : NAN};
+  for (size_t I = 0; I < m->p->n; I++)
+    info->volume += m->p->vol[I];
+  for (size_t Q = 0; Q < m->gq->n; Q++)
+    info->cell_area += m->gq->w[Q];
 }
 
 /* K_ij by binary search in the sorted node columns of row i (K's rows are

@@ -175,11 +175,14 @@ typedef struct {
   double h;             /* the node spacing the support scales with (m) */
   double support;       /* a (m) */
   size_t max_neighbours;
+  double volume;        /* sum of the node volumes (m^2) */
+  double cell_area;     /* sum of the weights of the background Gauss points (m^2) */
   size_t nnz_K;
   int symmetric;        /* Bubnov: K symmetric by construction */
   int eliminated;       /* the constraints were eliminations (no multipliers) */
   const char *solver;
-  double rcond, backward, factor_nnz;
+  double rcond, backward, factor_nnz; /* of the last solve (rcond also after a failed one;
+                                         NAN at a zero pivot) */
 } mfs_static_info;
 void mfs_static_get_info(const mfs_static *m, mfs_static_info *info);
 
