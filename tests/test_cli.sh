@@ -158,6 +158,8 @@ bad_cmd static --quadrature --quadrature stress-quad
 bad_cmd static --solver --solver lapack
 bad_cmd static --solver --method cd1 --solver cholmod
 bad_cmd static --solve-rcond-min --solve-rcond-min 1
+bad_cmd static --ebc --ebc layer
+bad_cmd static --ebc --problem plate-hole --ebc ghost
 # a singular system (sph with a < dx: every gradient vanishes, K = 0), and a
 # condition threshold above the solver's estimate: exit 1, one line, no file
 for args in "--method sph --dilation 0.9" "--method rl --solve-rcond-min 0.9" \
@@ -173,7 +175,7 @@ for args in "--method sph --dilation 0.9" "--method rl --solve-rcond-min 0.9" \
 done
 run static --help
 check "static --help: exit $rc" test "$rc" -eq 0
-for o in --problem --method --nodes --refine --patch --kernel --dilation --quadrature --young \
+for o in --problem --method --nodes --refine --patch --kernel --dilation --quadrature --young --ebc \
          --poisson --plane-strain --load --length --depth --hole-radius --plate-size --perturb \
          --seed --solver --solve-rcond-min; do
   check "static --help does not list $o" grep -q -- "$o" "$out"
@@ -186,6 +188,10 @@ check "static nodal: $(nlines "$out") lines, want 166 (33 x 5 nodes)" test "$(nl
 tip=$(awk -F, '$2 == 8 && $3 == 0 { printf "%.6f %.6f", $5, $7 }' "$out")
 check "static nodal: EFG tip deflection and exact '$tip', want 2.0700 (P L (8 L^2 + (4 + 5 nu) D^2) / (2 E D^3)) within 1e-4" \
   awk -v t="$tip" 'BEGIN { split(t, v, " "); d = v[1] - v[2]; exit !(v[2] == 2.070000 && d < 1e-4 && d > -1e-4) }'
+run static --method mls --nodes 33,5 --ebc ghost
+check "static --ebc ghost: exit $rc: $(head -c 200 "$err")" test "$rc" -eq 0
+check "static --ebc ghost: $(nlines "$out") lines, want 166 (the ghost columns not written)" test "$(nlines "$out")" -eq 166
+check "static --ebc ghost: a node at x < 0 written" awk -F, 'NR > 1 && $2 < 0 { exit 1 }' "$out"
 # a study: one row per method and level, the fitted rates
 run static --method efg,sph --refine 3
 check "static study: exit $rc: $(head -c 200 "$err")" test "$rc" -eq 0

@@ -204,6 +204,48 @@ static void check_prototype(void)
     }
 }
 
+/* The ghost diagnostic (spec.ghost = 6: nodes at x < 0, exact parameters at
+ * x <= 0, errors over [0, L]) against the prototype's --ebc ghost at dx = 1/4. */
+static void check_ghost(void)
+{
+  static const struct {
+    const char *m;
+    double L2, en;
+  } want[] = {{"efg", 1.819171474998e-03, 9.992463318486e-03},
+              {"mls", 1.818628933358e-01, 1.710220218187e-01},
+              {"cd1", 5.540591260293e-02, 1.620972719231e-01},
+              {"cd2", 7.339906824292e-02, 1.641387761500e-01}};
+  for (int k = 0; k < 4; k++) {
+    mfs_static_spec s = spec(&mfs_static_beam, mfs_static_method_find(want[k].m), 33, 5);
+    s.ghost = 6;
+    mfs_static *m = solved(&s);
+    if (!m)
+      continue;
+    mfs_static_errors e;
+    mfs_static_info in;
+    CHECK(mfs_static_error_norms(m, &e, NULL) == MFS_OK, "ghost %s: errors", want[k].m);
+    CHECK_NEAR(e.L2, want[k].L2, 1e-7 * want[k].L2, "ghost %s: L2 against the prototype", want[k].m);
+    CHECK_NEAR(e.energy, want[k].en, 1e-7 * want[k].en, "ghost %s: energy against the prototype",
+               want[k].m);
+    mfs_static_get_info(m, &in);
+    size_t inside = 0;
+    for (size_t I = 0; I < in.nodes; I++)
+      inside += (size_t)mfs_static_node_in_domain(m, I);
+    CHECK(in.nodes == 39 * 5 && inside == 33 * 5, "ghost %s: %zu nodes, %zu in the domain",
+          want[k].m, in.nodes, inside);
+    CHECK(in.eliminated && in.multipliers == 0, "ghost %s: prescribed parameters are eliminated",
+          want[k].m);
+    CHECK_NEAR(in.cell_area, 8.0, 1e-12, "ghost %s: the error cells cover [0, 8] x [-1/2, 1/2]",
+               want[k].m);
+    mfs_static_free(m);
+  }
+  mfs_static_spec s = spec(&mfs_static_plate_hole, &mfs_static_efg, 6, 6);
+  s.ghost = 6;
+  const char *f = NULL;
+  CHECK(mfs_static_check(&s, &f) == MFS_EINVAL && f && strcmp(f, "ghost") == 0,
+        "ghost on the plate: field %s", f ? f : "(none)");
+}
+
 /* ---- reproduction, patch test, lambda ------------------------------------ */
 
 static void check_patch(void)
@@ -566,6 +608,7 @@ int main(void)
   check_exact(&mfs_static_plate_hole, 0);
   check_exact(&mfs_static_plate_hole, 1);
   check_prototype();
+  check_ghost();
   check_patch();
   check_operators();
   check_geometry();

@@ -44,7 +44,10 @@ typedef struct {
   long seed;
   const mfs_spsolve_type *solver;
   double solve_rcond_min;
+  int ebc;
 } static_opts;
+
+static const char *const ebc_names[] = {"lm", "ghost", NULL};
 
 static const void *find_problem(const char *n)
 {
@@ -116,6 +119,11 @@ static const cli_opt opts[] = {
    .offset = OFF(perturb), .bounds = CLI_GE | CLI_LT, .lo = 0, .hi = 0.5},
   {.name = "--seed", .type = CLI_INT, .arg = "N", .help = "seed of --perturb (default 1)",
    .offset = OFF(seed), .bounds = CLI_GE | CLI_LE, .lo = 0, .hi = 4294967295.0},
+  {.name = "--ebc", .type = CLI_CHOICE, .arg = "lm|ghost",
+   .help = "essential conditions: lm, Lagrange multipliers on Gamma_u (default); ghost (beam,\n"
+           "a diagnostic): 6 columns of nodes added at x < 0 and the exact displacements\n"
+           "prescribed at every node with x <= 0, errors over [0, L]",
+   .offset = OFF(ebc), .choices = ebc_names},
   {.name = "--solver", .type = CLI_TABLE, .arg = "NAME",
    .help = "force the sparse solver (default: cholmod for symmetric eliminated systems,\n"
            "umfpack otherwise)",
@@ -249,13 +257,14 @@ static void put(FILE *f, double v, int last)
 
 static void config_header(FILE *f)
 {
-  fputs("problem,method,quadrature,kernel,dilation,young_pa,poisson,plane_strain,", f);
+  fputs("problem,method,quadrature,ebc,kernel,dilation,young_pa,poisson,plane_strain,", f);
 }
 
 static void config_row(FILE *f, const mfs_static_spec *s)
 {
   const mfs_quad_type *q = s->quadrature ? s->quadrature : s->method->quadrature;
-  fprintf(f, "%s,%s,%s,%s,", s->problem->name, s->method->name, q->name, s->kernel->name);
+  fprintf(f, "%s,%s,%s,%s,%s,", s->problem->name, s->method->name, q->name,
+          s->ghost ? "ghost" : "lm", s->kernel->name);
   put(f, s->dilation, 0);
   put(f, s->young, 0);
   put(f, s->poisson, 0);
@@ -279,6 +288,8 @@ static void nodal_csv(FILE *f, const mfs_static_spec *base, const mfs_static_met
       cli_die(1, "the nodal solution of method %s: %s", s.method->name, mfs_strerror(st));
     for (size_t I = 0; I < n; I++) {
       double x[2];
+      if (!mfs_static_node_in_domain(m, I))
+        continue; /* a ghost column */
       mfs_static_node(m, I, x);
       fprintf(f, "%s,", s.method->name);
       put(f, x[0], 0);
@@ -448,6 +459,9 @@ int cmd_static(int argc, char **argv)
   if (!beam && (cli_seen(&g, "--length") || cli_seen(&g, "--depth") || cli_seen(&g, "--perturb")))
     cli_die(2, "--length, --depth and --perturb are beam options; --problem is %s",
             o.problem->name);
+  if (!beam && o.ebc == 1)
+    cli_die(2, "--ebc ghost: a beam option (columns of nodes at x < 0); --problem is %s",
+            o.problem->name);
   if (beam && (cli_seen(&g, "--hole-radius") || cli_seen(&g, "--plate-size")))
     cli_die(2, "--hole-radius and --plate-size are plate-hole options; --problem is beam");
   if (!beam && !(o.plate > 2.0 * o.hole))
@@ -475,6 +489,7 @@ int cmd_static(int argc, char **argv)
   s.seed = (unsigned long)o.seed;
   s.solver = o.solver;
   s.solve_rcond_min = o.solve_rcond_min;
+  s.ghost = o.ebc == 1 ? 6 : 0;
   s.nx = beam ? 17 : 6;
   s.ny = beam ? 3 : 6;
   if (o.nodes)

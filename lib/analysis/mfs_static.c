@@ -90,7 +90,10 @@ struct mfs_static {
   mfs_static_spec s;
   const mfs_quad_type *qt; /* the rule in use */
   mfs_particles *p;        /* owned */
-  mfs_quad *gq;            /* background cells, 5 x 5 Gauss (errors) */
+  mfs_quad *gq;            /* background cells, 5 x 5 Gauss */
+  mfs_quad *eq;            /* the points of the error norms: gq, or its cells in the domain */
+  double *evol;            /* node weights of the nodal errors (the volume in the domain) */
+  unsigned char *pinned;   /* nodes whose parameters are prescribed (spec.ghost) */
   mfs_quad *q;             /* the assembly rule (owned, or gq) */
   size_t gq_block, q_block; /* points per block (cell), 1 for nodal */
   segment *seg;
@@ -181,6 +184,8 @@ static const char *beam_check(const mfs_static_spec *s)
     return "depth";
   if (!(s->perturb >= 0.0 && s->perturb < 0.5))
     return "perturb";
+  if (s->ghost < 0 || s->ghost > 64)
+    return "ghost";
   return NULL;
 }
 
@@ -233,6 +238,8 @@ static const char *plate_check(const mfs_static_spec *s)
     return "plate_size";
   if (s->perturb != 0.0)
     return "perturb";
+  if (s->ghost != 0)
+    return "ghost";
   return NULL;
 }
 
@@ -293,10 +300,11 @@ static int beam_build(mfs_static *m)
 {
   const mfs_static_spec *s = &m->s;
   double dx = s->length / (s->nx - 1), dy = s->depth / (s->ny - 1);
+  int G = s->ghost, nx = s->nx + G, ny = s->ny;
   mfs_lattice_spec ls = {.dim = 2,
                          .lattice = MFS_LATTICE_SQUARE,
-                         .nx = s->nx,
-                         .ny = s->ny,
+                         .nx = nx,
+                         .ny = ny,
                          .dx = dx,
                          .gamma = dy / dx,
                          .cells = MFS_CELLS_QUAD,
@@ -307,23 +315,29 @@ static int beam_build(mfs_static *m)
   if (!m->p)
     return st;
   mfs_particles *p = m->p;
-  /* the paper's coordinates: y in [-D/2, D/2] */
-  for (size_t I = 0; I < p->n; I++)
-    p->x[2 * I + 1] -= s->depth / 2.0;
-  for (size_t k = 0; k < p->ncell * 4; k++)
-    p->cellx[2 * k + 1] -= s->depth / 2.0;
-  p->box.lo[1] -= s->depth / 2.0;
-  p->box.hi[1] -= s->depth / 2.0;
+  /* the paper's coordinates: x in [0, L] (ghost columns at x < 0), y in [-D/2, D/2] */
+  double sx = -G * dx, sy = -s->depth / 2.0;
+  for (size_t I = 0; I < p->n; I++) {
+    p->x[2 * I] += sx;
+    p->x[2 * I + 1] += sy;
+  }
+  for (size_t k = 0; k < p->ncell * 4; k++) {
+    p->cellx[2 * k] += sx;
+    p->cellx[2 * k + 1] += sy;
+  }
+  p->box.lo[0] += sx;
+  p->box.hi[0] += sx;
+  p->box.lo[1] += sy;
+  p->box.hi[1] += sy;
   m->h = fmax(dx, dy);
-  int nx = s->nx, ny = s->ny;
   for (int i = 0; i + 1 < nx && st == MFS_OK; i++) /* bottom */
     st = add_segment(m, i, i + 1, SEG_FREE, 0);
   for (int j = 0; j + 1 < ny && st == MFS_OK; j++) /* x = L */
     st = add_segment(m, j * nx + nx - 1, (j + 1) * nx + nx - 1, SEG_TRACTION, 0);
   for (int i = nx - 1; i > 0 && st == MFS_OK; i--) /* top */
     st = add_segment(m, (ny - 1) * nx + i, (ny - 1) * nx + i - 1, SEG_FREE, 0);
-  for (int j = ny - 1; j > 0 && st == MFS_OK; j--) /* x = 0: u prescribed */
-    st = add_segment(m, j * nx, (j - 1) * nx, SEG_TRACTION, 3u);
+  for (int j = ny - 1; j > 0 && st == MFS_OK; j--) /* x = 0: u prescribed; or the ghosts' edge */
+    st = add_segment(m, j * nx, (j - 1) * nx, G ? SEG_FREE : SEG_TRACTION, G ? 0u : 3u);
   if (st != MFS_OK)
     return st;
   m->gq = mfs_quad_alloc(&mfs_quad_gauss[4], p, &st);
@@ -335,6 +349,36 @@ static int beam_build(mfs_static *m)
     if (!m->q)
       return st;
   }
+  if (!G)
+    return MFS_OK;
+  /* the ghosts: parameters prescribed at x <= 0; errors over the cells and
+   * volumes in [0, L] (cells are in rows of nx - 1, the first G columns ghost) */
+  m->pinned = calloc(p->n, 1);
+  m->evol = calloc(p->n, sizeof *m->evol);
+  m->eq = calloc(1, sizeof *m->eq);
+  size_t ne = (size_t)(ny - 1) * (size_t)(s->nx - 1) * 25;
+  if (!m->pinned || !m->evol || !m->eq)
+    return MFS_ENOMEM;
+  m->eq->dim = 2;
+  m->eq->x = malloc(2 * ne * sizeof *m->eq->x);
+  m->eq->w = malloc(ne * sizeof *m->eq->w);
+  m->eq->node = malloc(ne * sizeof *m->eq->node);
+  if (!m->eq->x || !m->eq->w || !m->eq->node)
+    return MFS_ENOMEM;
+  for (size_t c = 0; c < p->ncell; c++) {
+    if ((int)(c % (size_t)(nx - 1)) < G)
+      continue;
+    double a4 = mfs_cell_measure(p, c) / 4.0;
+    for (int k = 0; k < 4; k++)
+      m->evol[p->conn[4 * c + k]] += a4;
+    for (size_t g = 25 * c; g < 25 * c + 25; g++) {
+      memcpy(m->eq->x + 2 * m->eq->n, m->gq->x + 2 * g, 2 * sizeof(double));
+      m->eq->w[m->eq->n] = m->gq->w[g];
+      m->eq->node[m->eq->n++] = -1;
+    }
+  }
+  for (size_t I = 0; I < p->n; I++)
+    m->pinned[I] = (int)(I % (size_t)nx) <= G;
   return MFS_OK;
 }
 
@@ -636,7 +680,11 @@ void mfs_static_free(mfs_static *m)
     return;
   if (m->q != m->gq)
     mfs_quad_free(m->q);
+  if (m->eq != m->gq)
+    mfs_quad_free(m->eq);
   mfs_quad_free(m->gq);
+  free(m->evol);
+  free(m->pinned);
   mfs_particles_free(m->p);
   mfs_grid_free(m->grid);
   mfs_csr_free(m->K);
@@ -715,6 +763,15 @@ mfs_static *mfs_static_alloc(const mfs_static_spec *s, mfs_status *status, const
     if (!m->q)
       goto fail;
     m->q_block = 1;
+  }
+  if (!m->eq)
+    m->eq = m->gq;
+  st = MFS_ENOMEM;
+  if (!m->evol) {
+    m->evol = malloc(m->p->n * sizeof *m->evol);
+    if (!m->evol)
+      goto fail;
+    memcpy(m->evol, m->p->vol, m->p->n * sizeof *m->evol);
   }
   st = (mfs_status)boundary_points(m);
   if (st != MFS_OK)
@@ -1342,12 +1399,29 @@ static int assemble_boundary(mfs_static *m, mfs_static_where *where)
           if (mult[2 * (size_t)ends[t] + c] < 0)
             mult[2 * (size_t)ends[t] + c] = (int)m->m++;
       }
+  for (size_t I = 0; m->pinned && I < n; I++)
+    if (m->pinned[I])
+      for (int c = 0; c < 2; c++)
+        mult[2 * I + c] = (int)m->m++;
   gsum = calloc(m->m + 1, sizeof *gsum);
   if (!gsum)
     goto done;
   /* scale of the constraint rows: E/h makes C_IJ ~ E like K */
   m->cscale = m->s.young / m->h;
   st = MFS_OK;
+  /* prescribed parameters (ghosts): u_I = u(x_I) */
+  for (size_t I = 0; m->pinned && I < n && st == MFS_OK; I++)
+    if (m->pinned[I]) {
+      double u[2];
+      field(m, m->p->x + 2 * I, u, NULL);
+      for (int c = 0; c < 2 && st == MFS_OK; c++) {
+        int row = mult[2 * I + c];
+        gsum[row] = m->cscale * u[c];
+        st = coo_add(&ctr, row, 2 * (int)I + c, m->cscale);
+        if (st == MFS_OK)
+          st = coo_add(&cte, row, 2 * (int)I + c, m->cscale);
+      }
+    }
   for (size_t k = 0; k < m->nbp && st == MFS_OK; k++) {
     const bpoint *b = m->bp + k;
     const segment *sg = m->seg + b->seg;
@@ -1543,8 +1617,8 @@ void mfs_static_get_info(const mfs_static *m, mfs_static_info *info)
                             .factor_nnz = m->solver ? m->sinfo.factor_nnz : NAN};
   for (size_t I = 0; I < m->p->n; I++)
     info->volume += m->p->vol[I];
-  for (size_t Q = 0; Q < m->gq->n; Q++)
-    info->cell_area += m->gq->w[Q];
+  for (size_t Q = 0; Q < m->eq->n; Q++)
+    info->cell_area += m->eq->w[Q];
 }
 
 /* K_ij by binary search in the sorted node columns of row i (K's rows are
@@ -1579,6 +1653,11 @@ double mfs_static_asymmetry(const mfs_static *m)
 size_t mfs_static_nnodes(const mfs_static *m)
 {
   return m->p->n;
+}
+
+int mfs_static_node_in_domain(const mfs_static *m, size_t I)
+{
+  return m->evol[I] > 0.0;
 }
 
 void mfs_static_node(const mfs_static *m, size_t I, double x[2])
@@ -1671,10 +1750,31 @@ static void acc_norms(void *ctx, size_t Q, const double *x, double w, const doub
   }
 }
 
-/* The nodes as a quadrature rule (their volumes), with self. */
-static mfs_quad *node_quad(const mfs_static *m, mfs_status *st)
+/* The nodes of the domain as a quadrature rule (their volumes in it), with
+ * self; all: every node, in order. */
+static mfs_quad *node_quad(const mfs_static *m, int all, mfs_status *st)
 {
-  return mfs_quad_alloc(&mfs_quad_nodal, m->p, st);
+  size_t n = m->p->n;
+  mfs_quad *q = calloc(1, sizeof *q);
+  *st = MFS_ENOMEM;
+  if (!q)
+    return NULL;
+  q->dim = 2;
+  q->x = malloc(2 * n * sizeof *q->x);
+  q->w = malloc(n * sizeof *q->w);
+  q->node = malloc(n * sizeof *q->node);
+  if (!q->x || !q->w || !q->node) {
+    mfs_quad_free(q);
+    return NULL;
+  }
+  for (size_t I = 0; I < n; I++)
+    if (all || m->evol[I] > 0.0) {
+      memcpy(q->x + 2 * q->n, m->p->x + 2 * I, 2 * sizeof(double));
+      q->w[q->n] = m->evol[I];
+      q->node[q->n++] = (int)I;
+    }
+  *st = MFS_OK;
+  return q;
 }
 
 mfs_status mfs_static_error_norms(mfs_static *m, mfs_static_errors *out, mfs_static_where *where)
@@ -1682,7 +1782,7 @@ mfs_status mfs_static_error_norms(mfs_static *m, mfs_static_errors *out, mfs_sta
   if (!m || !m->solved)
     return MFS_EINVAL;
   mfs_status st;
-  mfs_quad *nq = node_quad(m, &st);
+  mfs_quad *nq = node_quad(m, 0, &st);
   if (!nq)
     return st;
   norm_acc a = {.m = m};
@@ -1692,7 +1792,7 @@ mfs_status mfs_static_error_norms(mfs_static *m, mfs_static_errors *out, mfs_sta
     out->energy_nodal = sqrt(a.num_e / a.den_e);
     out->max_nodal = a.max_u > 0.0 ? a.max_du / a.max_u : NAN;
     a = (norm_acc){.m = m};
-    st = (mfs_status)field_pass(m, m->gq, m->gq_block, m->u, acc_norms, &a, where);
+    st = (mfs_status)field_pass(m, m->eq, m->gq_block, m->u, acc_norms, &a, where);
   }
   if (st == MFS_OK) {
     out->L2 = sqrt(a.num_u / a.den_u);
@@ -1707,7 +1807,7 @@ mfs_status mfs_static_nodal_solution(mfs_static *m, double *uh, double *uexact)
   if (!m || !m->solved)
     return MFS_EINVAL;
   mfs_status st;
-  mfs_quad *nq = node_quad(m, &st);
+  mfs_quad *nq = node_quad(m, 1, &st);
   if (!nq)
     return st;
   norm_acc a = {.m = m, .uh = uh};

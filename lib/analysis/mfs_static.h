@@ -134,6 +134,11 @@ struct mfs_static_spec {
   double rcond_min;     /* moment matrices (0: 1e-12) */
   double solve_rcond_min; /* the linear system: the solver's rcond estimate (0: 1e-15) */
   const mfs_spsolve_type *solver; /* NULL: by capability (cholmod where eliminated and symmetric) */
+  int ghost;            /* beam: 0: Lagrange multipliers on x = 0 (the consistent method);
+                           G > 0: G columns of nodes added at x < 0 and the exact displacements
+                           prescribed as the parameters of every node at x <= 0 (a diagnostic
+                           with no approximation of the essential condition; errors over
+                           [0, L] only) */
   int patch;            /* solve the linear patch field u = c + G x (problem->patch_field) with
                            its tractions on every boundary instead of the problem */
 };
@@ -146,7 +151,7 @@ mfs_static_spec mfs_static_spec_default(void);
 /* MFS_OK or MFS_EINVAL with *field the first bad member ("problem", "method",
  * "quadrature", "kernel", "dilation", "nx", "ny", "young", "poisson", "load",
  * "length", "depth", "hole_radius", "plate_size", "perturb", "rcond_min",
- * "solve_rcond_min", "solver"). */
+ * "solve_rcond_min", "solver", "ghost"). */
 mfs_status mfs_static_check(const mfs_static_spec *s, const char **field);
 
 /* What failed, for messages: the point and its neighbour count. */
@@ -176,7 +181,7 @@ typedef struct {
   double support;       /* a (m) */
   size_t max_neighbours;
   double volume;        /* sum of the node volumes (m^2) */
-  double cell_area;     /* sum of the weights of the background Gauss points (m^2) */
+  double cell_area;     /* sum of the weights of the background Gauss points of the domain (m^2) */
   size_t nnz_K;
   int symmetric;        /* Bubnov: K symmetric by construction */
   int eliminated;       /* the constraints were eliminations (no multipliers) */
@@ -202,6 +207,8 @@ mfs_status mfs_static_error_norms(mfs_static *m, mfs_static_errors *e, mfs_stati
 /* Nodes and the solution at them: u^h(x_I) (not the nodal parameter) and
  * the exact u(x_I) (m). */
 size_t mfs_static_nnodes(const mfs_static *m);
+/* 1 if node I lies in the problem's domain (0 for the ghost columns of spec.ghost). */
+int mfs_static_node_in_domain(const mfs_static *m, size_t node);
 void mfs_static_node(const mfs_static *m, size_t node, double x[2]);
 /* uh: 2n values u^h(x_I); needs mfs_static_solve.  MFS_OK, MFS_EINVAL, MFS_ENOMEM. */
 mfs_status mfs_static_nodal_solution(mfs_static *m, double *uh, double *uexact);
