@@ -170,9 +170,12 @@ static int cholmod_constrained_fn(const mfs_csr *A, const mfs_csr *C, const doub
   double rho = mc > 0.0 ? ma / mc : 0.0;
   double al[2] = {1.0, 0.0}, be[2] = {rho, 0.0};
   Mf = cholmod_l_add(Af, CtC, al, be, 1, 1, &c);
+  cholmod_l_free_sparse(&Af, &c); /* freed as soon as possible: the peak memory */
+  cholmod_l_free_sparse(&CtC, &c);
   if (!Mf)
     goto done;
   M = cholmod_l_copy(Mf, 1, 1, &c); /* the upper triangle, symmetric */
+  cholmod_l_free_sparse(&Mf, &c);
   if (!M)
     goto done;
   L = cholmod_l_analyze(M, &c);
@@ -427,6 +430,59 @@ static mfs_csr *saddle_matrix(const mfs_csr *A, const mfs_csr *C, const mfs_csr 
   return K;
 }
 
+/* The normwise backward error of (x, l) for the saddle-point system, from
+ * its blocks: r = [A x + Ct^T l - b; C x - g]. */
+static double saddle_backward(const mfs_csr *A, const mfs_csr *C, const mfs_csr *Ct,
+                              const double *b, const double *g, const double *x, const double *l)
+{
+  size_t n = A->nrow, m = C->nrow;
+  double *r = calloc(n + m + 1, sizeof *r), *rs = calloc(n + m + 1, sizeof *rs);
+  if (!r || !rs) {
+    free(r);
+    free(rs);
+    return NAN;
+  }
+  double xn = 0.0, bn = 0.0;
+  for (size_t i = 0; i < n; i++) {
+    if (!isfinite(x[i]))
+      goto bad;
+    xn = fmax(xn, fabs(x[i]));
+    bn = fmax(bn, fabs(b[i]));
+    r[i] = -b[i];
+    for (size_t e = A->ptr[i]; e < A->ptr[i + 1]; e++) {
+      r[i] += A->val[e] * x[A->idx[e]];
+      rs[i] += fabs(A->val[e]);
+    }
+  }
+  for (size_t k = 0; k < m; k++) {
+    if (!isfinite(l[k]))
+      goto bad;
+    xn = fmax(xn, fabs(l[k]));
+    bn = fmax(bn, fabs(g[k]));
+    r[n + k] = -g[k];
+    for (size_t e = C->ptr[k]; e < C->ptr[k + 1]; e++) {
+      r[n + k] += C->val[e] * x[C->idx[e]];
+      rs[n + k] += fabs(C->val[e]);
+    }
+    for (size_t e = Ct->ptr[k]; e < Ct->ptr[k + 1]; e++) {
+      r[Ct->idx[e]] += Ct->val[e] * l[k];
+      rs[Ct->idx[e]] += fabs(Ct->val[e]);
+    }
+  }
+  double rn = 0.0, an = 0.0;
+  for (size_t i = 0; i < n + m; i++) {
+    rn = fmax(rn, fabs(r[i]));
+    an = fmax(an, rs[i]);
+  }
+  free(r);
+  free(rs);
+  return an * xn + bn > 0.0 ? rn / (an * xn + bn) : 0.0;
+bad:
+  free(r);
+  free(rs);
+  return NAN;
+}
+
 mfs_status mfs_spsolve_constrained(const mfs_spsolve_type *t, const mfs_csr *A, const mfs_csr *C,
                                    const mfs_csr *Ct, const double *b, const double *g, double *x,
                                    double *lambda, double rcond_min, mfs_spsolve_info *info)
@@ -439,25 +495,30 @@ mfs_status mfs_spsolve_constrained(const mfs_spsolve_type *t, const mfs_csr *A, 
       (Ct && (Ct->nrow != C->nrow || Ct->ncol != C->ncol)) || (C->nrow && !g))
     return MFS_EINVAL;
   size_t n = A->nrow, m = C->nrow;
-  mfs_csr *K = saddle_matrix(A, C, Ct ? Ct : C);
-  double *rhs = malloc((n + m + 1) * sizeof *rhs), *sol = malloc((n + m + 1) * sizeof *sol);
+  mfs_csr *K = NULL;
+  double *rhs = NULL, *sol = malloc((n + m + 1) * sizeof *sol);
   int st = MFS_ENOMEM;
-  if (!K || !rhs || !sol)
+  if (!sol)
     goto done;
-  memcpy(rhs, b, n * sizeof *b);
-  if (m)
-    memcpy(rhs + n, g, m * sizeof *g);
   if (!Ct && t->solve_constrained) {
     st = t->solve_constrained(A, C, b, g, sol, sol + n, info);
   } else {
     st = MFS_EINVAL;
     if (t->symmetric_only) /* the saddle-point matrix is indefinite */
       goto done;
+    st = MFS_ENOMEM;
+    K = saddle_matrix(A, C, Ct ? Ct : C);
+    rhs = malloc((n + m + 1) * sizeof *rhs);
+    if (!K || !rhs)
+      goto done;
+    memcpy(rhs, b, n * sizeof *b);
+    if (m)
+      memcpy(rhs + n, g, m * sizeof *g);
     st = t->solve(K, rhs, sol, info);
   }
   if (st != MFS_OK)
     goto done;
-  info->backward = backward_error(K, rhs, sol);
+  info->backward = saddle_backward(A, C, Ct ? Ct : C, b, g, sol, sol + n);
   st = MFS_OK;
   if (isnan(info->backward) || !(info->rcond >= rcond_min) || info->rcond == 0.0)
     st = MFS_ESYSTEM;
