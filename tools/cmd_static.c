@@ -15,7 +15,7 @@ static const char usage[] = "mfstab static [options] [-o FILE]";
 static const char about[] =
   "Static linear elasticity (plane stress, or --plane-strain) with the particle methods of\n"
   "paper 004 section 6.2, solved with a sparse direct solver (CHOLMOD for the symmetric\n"
-  "eliminated systems, UMFPACK otherwise), essential conditions by Lagrange multipliers:\n"
+  "systems, UMFPACK for the Petrov-Galerkin ones), essential conditions by Lagrange multipliers:\n"
   "  K_IJ = sum_Q w_Q B_test_I(x_Q)^T D B_trial_J(x_Q),  f_I = sum_b w_b psi_I(x_b) t(x_b)\n"
   "Problems: beam (eqs 120-126; [0, L] x [-D/2, D/2], tip load P) and plate-hole (eqs\n"
   "127-130; quarter of [0, b]^2 minus the disc of radius a, remote stress --load).\n"
@@ -37,7 +37,7 @@ typedef struct {
   int patch;
   const mfs_kernel_type *kernel;
   double dilation;
-  const mfs_quad_type *quadrature;
+  const char *quadrature;
   double young, poisson, load, length, depth, hole, plate;
   int plane_strain;
   double perturb;
@@ -57,10 +57,6 @@ static const void *find_kernel(const char *n)
 {
   return mfs_kernel_find(n);
 }
-static const void *find_quad(const char *n)
-{
-  return mfs_quad_find(n);
-}
 static const void *find_solver(const char *n)
 {
   return mfs_spsolve_find(n);
@@ -74,7 +70,7 @@ static const cli_opt opts[] = {
    .help = "comma-separated methods, or all (default efg): sph, jb, rl, cd1, cd2, mls, efg",
    .offset = OFF(methods)},
   {.name = "--nodes", .type = CLI_TEXT, .arg = "NX,NY",
-   .help = "beam: nodes along x and y (default 17,3: dx = 1/2); plate-hole: N nodes on an\n"
+   .help = "beam: nodes along x and y (default 17,3: dx = 1/2); plate-hole: N nodes on an "
            "outer edge, h = b/(N-1) (default 6)",
    .offset = OFF(nodes)},
   {.name = "--refine", .type = CLI_INT, .arg = "LEVELS",
@@ -86,12 +82,13 @@ static const cli_opt opts[] = {
   {.name = "--kernel", .type = CLI_TABLE, .arg = "NAME", .help = "the kernel (default cubic)",
    .offset = OFF(kernel), .find = find_kernel, .list = (const void *const *)mfs_kernel_types},
   {.name = "--dilation", .type = CLI_REAL, .arg = "D",
-   .help = "support radius a = D h (default 2.8284271247461903 = 2 sqrt(2): eq. 126, the\n"
+   .help = "support radius a = D h (default 2 sqrt(2) = 2.8284271247461903: eq. 126, the "
            "radius 2s with s the diagonal distance between nodes)",
    .offset = OFF(dilation), .bounds = CLI_GT | CLI_LE, .lo = 0, .hi = 100},
-  {.name = "--quadrature", .type = CLI_TABLE, .arg = "RULE",
-   .help = "override the method's rule: nodal or gaussN (default: nodal, gauss5 for efg)",
-   .offset = OFF(quadrature), .find = find_quad, .list = (const void *const *)mfs_quad_types},
+  {.name = "--quadrature", .type = CLI_TEXT, .arg = "RULE",
+   .help = "override the method's rule: nodal, gauss1 .. gauss10 (default: nodal; gauss5 for "
+           "efg)",
+   .offset = OFF(quadrature)},
   {.name = "--young", .type = CLI_REAL, .arg = "E",
    .help = "Young's modulus in Pa (default 1000, the paper's)", .offset = OFF(young),
    .bounds = CLI_GT, .lo = 0},
@@ -114,19 +111,19 @@ static const cli_opt opts[] = {
    .help = "plate-hole: side b of the quarter plate in m (default 5)", .offset = OFF(plate),
    .bounds = CLI_GT, .lo = 0},
   {.name = "--perturb", .type = CLI_REAL, .arg = "F",
-   .help = "beam: random shift of the nodes, a fraction of dx in [0, 0.5) (boundary nodes\n"
+   .help = "beam: random shift of the nodes, a fraction of dx in [0, 0.5) (boundary nodes "
            "along their edge, corners fixed; default 0)",
    .offset = OFF(perturb), .bounds = CLI_GE | CLI_LT, .lo = 0, .hi = 0.5},
   {.name = "--seed", .type = CLI_INT, .arg = "N", .help = "seed of --perturb (default 1)",
    .offset = OFF(seed), .bounds = CLI_GE | CLI_LE, .lo = 0, .hi = 4294967295.0},
   {.name = "--ebc", .type = CLI_CHOICE, .arg = "lm|ghost",
-   .help = "essential conditions: lm, Lagrange multipliers on Gamma_u (default); ghost (beam,\n"
-           "a diagnostic): 6 columns of nodes added at x < 0 and the exact displacements\n"
+   .help = "essential conditions: lm, Lagrange multipliers on Gamma_u (default); ghost (beam, "
+           "a diagnostic): 6 columns of nodes added at x < 0 and the exact displacements "
            "prescribed at every node with x <= 0, errors over [0, L]",
    .offset = OFF(ebc), .choices = ebc_names},
   {.name = "--solver", .type = CLI_TABLE, .arg = "NAME",
-   .help = "force the sparse solver (default: cholmod for symmetric eliminated systems,\n"
-           "umfpack otherwise)",
+   .help = "force the sparse solver (default: cholmod for the symmetric systems, umfpack for "
+           "the Petrov-Galerkin ones)",
    .offset = OFF(solver), .find = find_solver, .list = (const void *const *)mfs_spsolve_types},
   {.name = "--solve-rcond-min", .type = CLI_REAL, .arg = "R",
    .help = "a system whose solver rcond estimate is below R is singular (default 1e-15)",
@@ -466,17 +463,17 @@ int cmd_static(int argc, char **argv)
     cli_die(2, "--hole-radius and --plate-size are plate-hole options; --problem is beam");
   if (!beam && !(o.plate > 2.0 * o.hole))
     cli_die(2, "--plate-size %g: must exceed twice --hole-radius (%g)", o.plate, o.hole);
-  if (o.quadrature && !(o.quadrature->gauss_n > 0 ||
-                        (o.quadrature->node_share == 1.0 && !o.quadrature->centres)))
-    cli_die(2, "--quadrature %s: not available here; allowed: nodal, gauss1 .. gauss10",
-            o.quadrature->name);
+  const mfs_quad_type *rule = o.quadrature ? mfs_quad_find(o.quadrature) : NULL;
+  if (o.quadrature && (!rule || !(rule->gauss_n > 0 || (rule->node_share == 1.0 && !rule->centres))))
+    cli_die(2, "--quadrature '%s': not available here; allowed: nodal, gauss1 .. gauss10",
+            o.quadrature);
   const mfs_static_method *ms[MAXM];
   size_t nm = parse_methods(o.methods, ms);
   mfs_static_spec s = d;
   s.problem = o.problem;
   s.kernel = o.kernel;
   s.dilation = o.dilation;
-  s.quadrature = o.quadrature;
+  s.quadrature = rule;
   s.young = o.young;
   s.poisson = o.poisson;
   s.plane_strain = o.plane_strain;
