@@ -365,8 +365,18 @@ static int pev_init(pev *e, const mfs_static *m)
 
 /* Evaluate at x with the candidates cand[0..nc) (all within a), self the
  * node at x or -1. */
+static int pev_point_opt(pev *e, const mfs_static *m, const double *x, int self, const int *cand,
+                         size_t nc, int trial_only, mfs_static_where *where);
+
 static int pev_point(pev *e, const mfs_static *m, const double *x, int self, const int *cand,
                      size_t nc, mfs_static_where *where)
+{
+  return pev_point_opt(e, m, x, self, cand, nc, 0, where);
+}
+
+/* trial_only: the test functions are not needed (the error norms) */
+static int pev_point_opt(pev *e, const mfs_static *m, const double *x, int self, const int *cand,
+                         size_t nc, int trial_only, mfs_static_where *where)
 {
   int st = pev_reserve(e, nc);
   if (st != MFS_OK)
@@ -375,7 +385,8 @@ static int pev_point(pev *e, const mfs_static *m, const double *x, int self, con
   int nn;
   double rc = 1.0;
   st = mfs_eval_point_general(&e->tr, x, p->x, p->vol, cand, nc, self, e->idx, e->otr, &nn, &rc);
-  if (st == MFS_OK && e->has_test)
+  int test = e->has_test && !trial_only;
+  if (st == MFS_OK && test)
     st = mfs_eval_point_general(&e->te, x, p->x, p->vol, cand, nc, self, e->idx2, e->ote, &nn,
                                 &rc);
   e->nn = nn;
@@ -411,7 +422,7 @@ static int pev_point(pev *e, const mfs_static *m, const double *x, int self, con
     B[1] = by * o[2];
     B[2] = o[2];
     B[3] = o[1];
-    if (e->has_test) {
+    if (test) {
       const double *t = e->ote + 3 * J;
       e->vte[J] = t[0];
       double *T = e->Bte + 4 * J;
@@ -1185,8 +1196,8 @@ static int field_pass(mfs_static *m, const mfs_quad *q, size_t bs, const double 
   while (st == MFS_OK && (r = cursor_next(&c, m)) > 0) {
     for (size_t Q = c.b0 * bs; Q < c.b1 * bs && st == MFS_OK; Q++) {
       size_t L = Q - c.b0 * bs;
-      st = pev_point(&e, m, q->x + 2 * Q, q->node[Q], c.nl->idx + c.nl->ptr[L],
-                     c.nl->ptr[L + 1] - c.nl->ptr[L], where);
+      st = pev_point_opt(&e, m, q->x + 2 * Q, q->node[Q], c.nl->idx + c.nl->ptr[L],
+                         c.nl->ptr[L + 1] - c.nl->ptr[L], 1, where);
       if (st != MFS_OK)
         break;
       double uh[2] = {0.0, 0.0}, eps[3] = {0.0, 0.0, 0.0};
