@@ -29,6 +29,8 @@
 #include "mfs_dispersion.h"
 #include "mfs_eigen.h"
 #include "mfs_bound.h"
+#include "mfs_spsolve.h"
+#include "mfs_static.h"
 /* time */
 #include "mfs_explicit.h"
 #include "mfs_integrator.h"

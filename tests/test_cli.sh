@@ -377,6 +377,82 @@ check "check: the user's rule listed" grep -q "your rule .*DualSPHysics" "$out"
 rm -rf "$pf"
 
 # (docs/user-guide.md's "Check your own model" example runs in tests/test_docs.py with the others)
+# --- mfstab static (paper 004): bad input, numerical failures, good runs -------
+bad_cmd static --method --method fem
+bad_cmd static --method --method sph,fem
+bad_cmd static --method --method efg,efg
+bad_cmd static --problem --problem disc
+bad_cmd static --nodes --nodes 1,3
+bad_cmd static --nodes --nodes 17
+bad_cmd static --nodes --nodes 17,x
+bad_cmd static --nodes --problem plate-hole --nodes 2
+bad_cmd static --nodes --problem plate-hole --nodes 6,7
+bad_cmd static --dilation --method mls --dilation 0.9
+bad_cmd static --dilation --method efg --dilation 0.9
+bad_cmd static --dilation --method jb --dilation 0.9
+bad_cmd static --dilation --method cd2 --nodes 3,2 --dilation 0.7
+bad_cmd static --dilation --dilation 0
+bad_cmd static --poisson --poisson 0.5
+bad_cmd static --young --young 0
+bad_cmd static --load --load 0
+bad_cmd static --refine --refine 0
+bad_cmd static --refine --refine 12
+bad_cmd static --patch --patch --refine 2
+bad_cmd static --perturb --problem plate-hole --perturb 0.1
+bad_cmd static --perturb --perturb 0.5
+bad_cmd static --hole-radius --hole-radius 0.5
+bad_cmd static --plate-size --problem plate-hole --plate-size 2
+bad_cmd static --quadrature --quadrature stress-quad
+bad_cmd static --solver --solver lapack
+bad_cmd static --solver --method cd1 --solver cholmod
+bad_cmd static --solve-rcond-min --solve-rcond-min 1
+bad_cmd static --ebc --ebc layer
+bad_cmd static --ebc --problem plate-hole --ebc ghost
+# a singular system (sph with a < dx: every gradient vanishes, K = 0), and a
+# condition threshold above the solver's estimate: exit 1, one line, no file
+for args in "--method sph --dilation 0.9" "--method rl --solve-rcond-min 0.9" \
+            "--method sph --dilation 0.9 --solver umfpack"; do
+  mkdir -p "$tmp/res"
+  run static $args -o "$tmp/res/out.csv"
+  check "static $args: exit $rc, want 1" test "$rc" -eq 1
+  check "static $args: $(nlines "$err") lines on stderr, want 1" test "$(nlines "$err")" -eq 1
+  check "static $args: message does not say singular: $(cat "$err")" grep -q "singular" "$err"
+  check "static $args: output file left behind" test ! -e "$tmp/res/out.csv"
+  check "static $args: temporary file left behind" no_tmp_left
+  rm -rf "$tmp/res"
+done
+run static --help
+check "static --help: exit $rc" test "$rc" -eq 0
+for o in --problem --method --nodes --refine --patch --kernel --dilation --quadrature --young --ebc \
+         --poisson --plane-strain --load --length --depth --hole-radius --plate-size --perturb \
+         --seed --solver --solve-rcond-min; do
+  check "static --help does not list $o" grep -q -- "$o" "$out"
+done
+# the nodal solution: the columns, u^h at the nodes, the exact solution beside it
+run static --method efg --nodes 33,5
+check "static nodal: exit $rc: $(head -c 200 "$err")" test "$rc" -eq 0
+check "static nodal: header '$(head -n 1 "$out")'" test "$(head -n 1 "$out")" = "method,x_m,y_m,ux_m,uy_m,ux_exact_m,uy_exact_m"
+check "static nodal: $(nlines "$out") lines, want 166 (33 x 5 nodes)" test "$(nlines "$out")" -eq 166
+tip=$(awk -F, '$2 == 8 && $3 == 0 { printf "%.6f %.6f", $5, $7 }' "$out")
+check "static nodal: EFG tip deflection and exact '$tip', want 2.0700 (P L (8 L^2 + (4 + 5 nu) D^2) / (2 E D^3)) within 1e-4" \
+  awk -v t="$tip" 'BEGIN { split(t, v, " "); d = v[1] - v[2]; exit !(v[2] == 2.070000 && d < 1e-4 && d > -1e-4) }'
+run static --method mls --nodes 33,5 --ebc ghost
+check "static --ebc ghost: exit $rc: $(head -c 200 "$err")" test "$rc" -eq 0
+check "static --ebc ghost: $(nlines "$out") lines, want 166 (the ghost columns not written)" test "$(nlines "$out")" -eq 166
+check "static --ebc ghost: a node at x < 0 written" awk -F, 'NR > 1 && $2 < 0 { exit 1 }' "$out"
+# a study: one row per method and level, the fitted rates
+run static --method efg,sph --refine 3
+check "static study: exit $rc: $(head -c 200 "$err")" test "$rc" -eq 0
+check "static study: $(nlines "$out") lines, want 7" test "$(nlines "$out")" -eq 7
+rates=$(awk -F, 'NR == 1 { for (i = 1; i <= NF; i++) h[$i] = i; next }
+  $h["level"] == 3 { printf "%s %s %s ", $h["method"], $h["rate_L2"], $h["rate_energy"] }' "$out")
+check "static study: EFG L2 rate >= 1.8 and energy >= 0.9, SPH energy < 0.3: '$rates'" \
+  awk -v r="$rates" 'BEGIN { split(r, v, " "); exit !(v[1] == "efg" && v[2] >= 1.8 && v[3] >= 0.9 && v[4] == "sph" && v[6] < 0.3) }'
+check "static study: NaN or inf" bash -c "! grep -qiE 'nan|inf' '$out'"
+run static --method all --patch --nodes 33,5
+check "static --patch: exit $rc: $(head -c 200 "$err")" test "$rc" -eq 0
+repro=$(awk -F, 'NR == 1 { for (i = 1; i <= NF; i++) h[$i] = i; next } { printf "%s:%s ", $h["method"], $h["reproduces_1e-10"] }' "$out")
+check "static --patch: reproduction flags '$repro'" test "$repro" = "sph:0 jb:0 rl:1 cd1:1 cd2:1 mls:1 efg:1 "
 
 # --- a good run: Table I, 2x2 cell quadrature --------------------------------
 mkdir -p "$tmp/res"

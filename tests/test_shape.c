@@ -139,9 +139,10 @@ static void check_identities(const mfs_shape_type *sh, const mfs_shape_ctx *c, i
   int dim = c->dim, nc = mfs_shape_ncomp(dim, order);
   double e, sc, A = c->a;
   int pu = sh->partition_of_unity;
-  int mls = strcmp(sh->name, "mls") == 0;
-  int shep = strcmp(sh->name, "shepard") == 0;
-  int corr = strcmp(sh->name, "kb") == 0 || strcmp(sh->name, "rl") == 0;
+  /* the identities each table claims through its capability fields */
+  int linval = sh->linear_complete;  /* mls, cd2: values reproduce linear fields */
+  int lingrad = sh->gradient_linear; /* mls, kb, rl, cd2: gradients do */
+  int hess_sym = sh->linear_complete && sh->gradient_is_derivative; /* mls */
   int finite = 1;
   for (int i = 0; i < nn * nc; i++)
     finite &= isfinite(out[i]) != 0;
@@ -176,7 +177,8 @@ static void check_identities(const mfs_shape_type *sh, const mfs_shape_ctx *c, i
     return;
   }
 
-  /* partition of unity (all but sph: kb values are Shepard, rl V-weighted Shepard) */
+  /* partition of unity (all but sph: kb values are Shepard, rl and sphs V-weighted Shepard,
+   * cd2 MLS) */
   e = sum_err(nn, out, nc, NULL, 0, A, 1.0, 1.0, &sc);
   CHECK_SUM(e, sc, tol, "%s: sum phi - 1 = %.3g (scale %.3g)", ctx, e, sc);
   /* gradients of a constant */
@@ -184,26 +186,27 @@ static void check_identities(const mfs_shape_type *sh, const mfs_shape_ctx *c, i
     e = sum_err(nn, out + 1 + k, nc, NULL, 0, A, 0.0, 1.0 / A, &sc);
     CHECK_SUM(e, sc, tol, "%s: sum d_%d phi = %.3g (scale %.3g)", ctx, k, e, sc);
   }
-  if (mls) /* values reproduce linear fields: sum phi_J (X_J - X) = 0 */
+  if (linval) /* values reproduce linear fields: sum phi_J (X_J - X) = 0 */
     for (int m = 0; m < dim; m++) {
       e = sum_err(nn, out, nc, d + m, dim, A, 0.0, 1.0, &sc);
       CHECK_SUM(e, sc, tol, "%s: sum phi (X_J - X)_%d / a = %.3g (scale %.3g)", ctx, m, e, sc);
     }
-  if (mls || corr) /* gradients reproduce linear fields: sum G_J (X_J - X)^T = I */
+  if (lingrad) /* gradients reproduce linear fields: sum G_J (X_J - X)^T = I */
     for (int k = 0; k < dim; k++)
       for (int m = 0; m < dim; m++) {
         e = sum_err(nn, out + 1 + k, nc, d + m, dim, A, k == m ? 1.0 / A : 0.0, 1.0 / A, &sc);
         CHECK_SUM(e, sc, tol, "%s: sum G_%d (X_J - X)_%d / a - delta / a = %.3g (scale %.3g)", ctx, k,
                   m, e, sc);
       }
-  if (order >= 2 && (mls || shep || corr)) {
-    /* second derivatives of constants vanish (all), of linear fields too
-     * (mls; for kb and rl the derivative of sum G (X_J - X)^T = I gives
-     * sum dG (X_J - X)^T = delta sum G = 0) */
+  if (order >= 2) {
+    /* second derivatives of constants vanish (all: sum G_J = 0 identically), of
+     * linear fields too where the gradients reproduce them (mls; for kb, rl and
+     * cd2 the derivative of sum G (X_J - X)^T = I gives sum dG (X_J - X)^T =
+     * delta sum G = 0) */
     for (int q = 0; q < dim * dim; q++) {
       e = sum_err(nn, out + 1 + dim + q, nc, NULL, 0, A, 0.0, 1.0 / (A * A), &sc);
       CHECK_SUM(e, sc, tol, "%s: sum d2 phi [%d] = %.3g (scale %.3g)", ctx, q, e, sc);
-      if (!shep)
+      if (lingrad)
         for (int m = 0; m < dim; m++) {
           e = sum_err(nn, out + 1 + dim + q, nc, d + m, dim, A, 0.0, 1.0 / (A * A), &sc);
           CHECK_SUM(e, sc, tol, "%s: sum d2 phi [%d] (X_J - X)_%d / a = %.3g (scale %.3g)", ctx, q,
@@ -211,7 +214,7 @@ static void check_identities(const mfs_shape_type *sh, const mfs_shape_ctx *c, i
         }
     }
   }
-  if (mls && order >= 2) /* symmetric Hessians */
+  if (hess_sym && order >= 2) /* symmetric Hessians */
     for (int J = 0; J < nn; J++)
       for (int k = 0; k < dim; k++)
         for (int n = 0; n < k; n++) {
@@ -248,7 +251,7 @@ static void check_fd(const mfs_shape_type *sh, const mfs_shape_ctx *c, const mfs
   double h = (rmin < 1e-3 * c->a ? 1e-7 : 1e-5) * c->a;
   mfs_status st = sh->eval(c, nn, d, v, -1, order, o0, work, &rc);
   CHECK(st == MFS_OK, "%s: fd centre status %d", ctx, st);
-  int is_grad = strcmp(sh->name, "kb") != 0 && strcmp(sh->name, "rl") != 0;
+  int is_grad = sh->gradient_is_derivative;
   /* scales: the largest entry, at least that of a unit field over length a */
   double gs = 1.0 / c->a, Gs = 1.0 / (c->a * c->a);
   for (int J = 0; J < nn; J++)
@@ -273,8 +276,8 @@ static void check_fd(const mfs_shape_type *sh, const mfs_shape_ctx *c, const mfs
     double em1 = 0.0, em2 = 0.0;
     for (int J = 0; J < nn; J++) {
       const double *P = op + J * nc, *M = om + J * nc, *O = o0 + J * nc;
-      /* the gradient slot is d_n phi for sph, shepard, mls; for kb and rl it
-       * is the corrected gradient, which is not the derivative of the values */
+      /* the gradient slot is d_n phi for sph, shepard, mls; for kb, rl, sphs and
+       * cd2 it is a corrected gradient, which is not the derivative of the values */
       if (is_grad)
         em1 = fmax(em1, fabs((P[0] - M[0]) / (2 * h) - O[1 + n]));
       if (order >= 2) /* layout [k][n] = d_n (gradient slot k) */
@@ -365,8 +368,8 @@ static void run_set(const char *name, mfs_particles *p, const double *dils, int 
               CHECK(e <= 1e-13 * m, "%s: order 1 and order 2 values/gradients differ by %.3g",
                     ctx, e);
             }
-            /* only rl reads self: everywhere else self = -1 changes nothing */
-            if (self >= 0 && strcmp(sh->name, "rl") != 0) {
+            /* only rl and sphs read self: everywhere else self = -1 changes nothing */
+            if (self >= 0 && !sh->uses_self) {
               sh->eval(&c, nn, d, v, -1, order, out2, work, &rc);
               CHECK(memcmp(out, out2, nn * nc * sizeof *out) == 0, "%s: depends on self", ctx);
             }
@@ -430,6 +433,9 @@ static void check_singular(void)
         st = mfs_shape_rl.eval(&c, nn, d, v, t == 0 ? 0 : -1, order, out, work, &rc);
         CHECK(st == MFS_ESINGULAR, "rl singular case %d %s: status %d", t, c.kernel->name, st);
         CHECK(isfinite(rc), "rl singular case %d: rcond %g", t, rc);
+        st = mfs_shape_cd2.eval(&c, nn, d, v, t == 0 ? 0 : -1, order, out, work, &rc);
+        CHECK(st == MFS_ESINGULAR, "cd2 singular case %d %s: status %d", t, c.kernel->name, st);
+        CHECK(isfinite(rc) && rc < 1e-12, "cd2 singular case %d: rcond %g", t, rc);
         /* Shepard needs only one neighbour */
         st = mfs_shape_shepard.eval(&c, nn, d, v, -1, order, out, work, &rc);
         CHECK(st == MFS_OK, "shepard case %d: status %d", t, st);
@@ -590,14 +596,24 @@ int main(void)
   for (int i = 0; mfs_shape_types[i]; i++, ns++)
     CHECK(mfs_shape_find(mfs_shape_types[i]->name) == mfs_shape_types[i], "find %s",
           mfs_shape_types[i]->name);
-  CHECK(ns == 5, "%d shape types, want 5", ns);
+  CHECK(ns == 7, "%d shape types, want 7", ns);
   CHECK(mfs_shape_find("efg") == NULL, "unknown shape name gives NULL");
   CHECK(mfs_shape_sph.uses_volumes && mfs_shape_rl.uses_volumes && !mfs_shape_mls.uses_volumes &&
-          !mfs_shape_shepard.uses_volumes && !mfs_shape_kb.uses_volumes,
+          !mfs_shape_shepard.uses_volumes && !mfs_shape_kb.uses_volumes &&
+          mfs_shape_sphs.uses_volumes && !mfs_shape_cd2.uses_volumes,
         "uses_volumes flags");
+  CHECK(mfs_shape_mls.gradient_linear && mfs_shape_kb.gradient_linear && mfs_shape_rl.gradient_linear &&
+          mfs_shape_cd2.gradient_linear && !mfs_shape_sph.gradient_linear &&
+          !mfs_shape_shepard.gradient_linear && !mfs_shape_sphs.gradient_linear,
+        "gradient_linear flags");
+  CHECK(mfs_shape_rl.uses_self && mfs_shape_sphs.uses_self && !mfs_shape_mls.uses_self &&
+          !mfs_shape_kb.uses_self && !mfs_shape_cd2.uses_self && !mfs_shape_sph.uses_self &&
+          !mfs_shape_shepard.uses_self,
+        "uses_self flags");
   CHECK(!mfs_shape_sph.partition_of_unity && mfs_shape_rl.partition_of_unity &&
           mfs_shape_mls.partition_of_unity && mfs_shape_shepard.partition_of_unity &&
-          mfs_shape_kb.partition_of_unity,
+          mfs_shape_kb.partition_of_unity && mfs_shape_sphs.partition_of_unity &&
+          mfs_shape_cd2.partition_of_unity,
         "partition_of_unity flags");
   CHECK(mfs_shape_ncomp(2, 1) == 3 && mfs_shape_ncomp(2, 2) == 7 && mfs_shape_ncomp(1, 2) == 3,
         "mfs_shape_ncomp");

@@ -15,6 +15,7 @@
 #include "cli.h"
 #include "commands.h"
 #include "eigs_figures.h"
+#include "repro_static.h"
 
 static const char usage[] = "mfstab reproduce [--out DIR]";
 static const char about[] =
@@ -386,6 +387,7 @@ int cmd_reproduce(int argc, char **argv)
   figures();
   figure17();
   figure1_000();
+  repro_static_rows(outdir, row);
   if (failures)
     cli_die(1, "%d artifact(s) differ from the paper without an errata entry", failures);
   return 0;

@@ -10,5 +10,6 @@ int cmd_bound(int argc, char **argv);
 int cmd_run(int argc, char **argv);
 int cmd_map(int argc, char **argv);
 int cmd_check(int argc, char **argv);
+int cmd_static(int argc, char **argv);
 
 #endif

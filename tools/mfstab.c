@@ -24,6 +24,7 @@ static const struct {
   {"run", cmd_run, "explicit reference solver on a scene file (INI)"},
   {"map", cmd_map, "stability over a grid of states (stretches, stresses): PDE and kernel frames"},
   {"check", cmd_check, "check your own discretization: stability, modes and time steps you can trust"},
+  {"static", cmd_static, "static elasticity with the seven particle methods of paper 004"},
   {"reproduce", cmd_reproduce, "regenerate the reproduced tables and figures into notebooks-data/"},
 };
 enum { NCMDS = sizeof cmds / sizeof cmds[0] };

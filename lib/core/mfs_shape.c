@@ -429,6 +429,83 @@ static int mls_fast_order1(const mfs_shape_ctx *c, int nn, const double *d, doub
   return MFS_OK;
 }
 
+/* The corrected Shepard gradient (kb) with gradients only, in 1D or 2D,
+ * written with scalars as mls_fast_order1 (same formulas as kb_eval: the
+ * Shepard functions, then G = C^-1 h with C = sum_J h_J (X_J - X)^T). */
+static int kb_fast_order1(const mfs_shape_ctx *c, int nn, const double *d, double *out,
+                          double *work, double *rcond)
+{
+  const int dim = c->dim, os = 1 + dim;
+  const double ia = 1.0 / c->a;
+  double cn = c->kernel->norm[dim - 1] * ia;
+  if (dim == 2)
+    cn *= ia;
+  double S = 0.0, Sx = 0.0, Sy = 0.0;
+  for (int J = 0; J < nn; J++) {
+    double px = d[J * dim] * ia, py = dim == 2 ? d[J * dim + 1] * ia : 0.0;
+    double z = sqrt(px * px + py * py), w = 0.0, dw = 0.0, d2w;
+    if (z < 1.0)
+      c->kernel->eval(z, &w, &dw, &d2w);
+    double W = cn * w, t = z > 0.0 ? -cn * dw / z * ia : -cn * d2w * ia;
+    double *o = work + 3 * J;
+    o[0] = W;
+    o[1] = t * px;
+    o[2] = t * py;
+    S += W;
+    Sx += o[1];
+    Sy += o[2];
+  }
+  *rcond = 0.0;
+  if (!(S > 0.0))
+    return MFS_ESINGULAR;
+  double iS = 1.0 / S, c00 = 0, c01 = 0, c10 = 0, c11 = 0;
+  for (int J = 0; J < nn; J++) { /* Shepard values and gradients h_J; C = sum h d^T */
+    double *o = work + 3 * J, *r = out + (size_t)J * os;
+    double phi = o[0] * iS;
+    r[0] = phi;
+    o[1] = (o[1] - phi * Sx) * iS;
+    o[2] = (o[2] - phi * Sy) * iS;
+    double dx = d[J * dim], dy = dim == 2 ? d[J * dim + 1] : 0.0;
+    c00 += o[1] * dx;
+    c01 += o[1] * dy;
+    c10 += o[2] * dx;
+    c11 += o[2] * dy;
+  }
+  double i00, i01 = 0.0, i10 = 0.0, i11 = 0.0, na, ni;
+  if (dim == 1) {
+    if (c00 == 0.0)
+      return MFS_ESINGULAR;
+    i00 = 1.0 / c00;
+    na = fabs(c00);
+    ni = fabs(i00);
+  } else {
+    double det = c00 * c11 - c01 * c10;
+    if (det == 0.0)
+      return MFS_ESINGULAR;
+    i00 = c11 / det;
+    i01 = -c01 / det;
+    i10 = -c10 / det;
+    i11 = c00 / det;
+    na = fmax(fabs(c00) + fabs(c10), fabs(c01) + fabs(c11));
+    ni = fmax(fabs(i00) + fabs(i10), fabs(i01) + fabs(i11));
+  }
+  double rc = 1.0 / (na * ni);
+  *rcond = isfinite(rc) ? rc : 0.0;
+  if (*rcond < c->rcond_min || *rcond == 0.0)
+    return MFS_ESINGULAR;
+  for (int J = 0; J < nn; J++) {
+    const double *o = work + 3 * J;
+    double *r = out + (size_t)J * os;
+    if (dim == 1) {
+      r[1] = i00 * o[1];
+    } else {
+      r[1] = i00 * o[1] + i01 * o[2];
+      r[2] = i10 * o[1] + i11 * o[2];
+    }
+  }
+  return MFS_OK;
+}
+
 /* 1D linear MLS fused with the gather (mfs_shape_type.gather_1d): the body
  * is mfs_mls1d_gather (mfs_mls1d.h), specialized for each built-in kernel
  * (MFS_KERNEL_LIST) with the kernel's inline formula in place of the call
@@ -914,6 +991,8 @@ static int kb_eval(const mfs_shape_ctx *c, int nn, const double *d, const double
 {
   (void)v;
   (void)self;
+  if (order == 1 && c->dim <= 2)
+    return kb_fast_order1(c, nn, d, out, work, rcond);
   int os = mfs_shape_ncomp(c->dim, order);
   kernel_values(c, nn, d, order, work);
   int st = mls_core(c, 1, nn, d, work, NULL, order, out, os, rcond);
@@ -925,8 +1004,13 @@ static int kb_eval(const mfs_shape_ctx *c, int nn, const double *d, const double
   return st;
 }
 
-static int rl_eval(const mfs_shape_ctx *c, int nn, const double *d, const double *v, int self,
-                   int order, double *out, double *work, double *rcond)
+/* The symmetrized SPH gradient o_J = V_J grad W_J - psi_J sum_K V_K grad W_K
+ * (paper 000 eq. 33, paper 004 eq. 47), psi_J the reference: delta at the
+ * point's own particle, the V-weighted Shepard function elsewhere; values
+ * the V-weighted Shepard functions.  correct: normalized by the
+ * Randles-Libersky matrix (paper 000 eq. 34, paper 004 eqs 68-69). */
+static int sym_gradient(const mfs_shape_ctx *c, int nn, const double *d, const double *v, int self,
+                        int order, double *out, double *work, double *rcond, int correct)
 {
   int dim = c->dim, os = mfs_shape_ncomp(dim, order), st = 1 + dim + dim * dim;
   double *kw = work, *sh = work + (size_t)nn * st; /* sh: V-weighted Shepard, order <= 1 */
@@ -956,10 +1040,101 @@ static int rl_eval(const mfs_shape_ctx *c, int nn, const double *d, const double
         }
     }
   }
+  if (!correct)
+    return MFS_OK;
   double rc2;
   int s2 = correct_gradient(c, nn, d, order, out, os, &rc2);
   *rcond = rc2 < *rcond ? rc2 : *rcond;
   return s2;
+}
+
+static int rl_eval(const mfs_shape_ctx *c, int nn, const double *d, const double *v, int self,
+                   int order, double *out, double *work, double *rcond)
+{
+  return sym_gradient(c, nn, d, v, self, order, out, work, rcond, 1);
+}
+
+static int sphs_eval(const mfs_shape_ctx *c, int nn, const double *d, const double *v, int self,
+                     int order, double *out, double *work, double *rcond)
+{
+  return sym_gradient(c, nn, d, v, self, order, out, work, rcond, 0);
+}
+
+/* Corrected derivatives, method 2 (paper 004 eqs 63-64): with p_J = (1,
+ * (X_J - X)/a) and A = sum_J W_J p_J p_J^T, q_J = A^-1 p_J, the values are
+ * the MLS functions q_J[0] W_J (the Shepard factor of eq. 63 cancels) and
+ * the gradient is the diffuse (Nayroles) derivative G_kJ = q_J[k+1] W_J / a,
+ * which is not the derivative of the values.  Order 2: d_n G_kJ from
+ * d_n q_J = A^-1 (d_n p_J - d_n A q_J), d_n p_J = -e_(n+1) / a. */
+static int cd2_eval(const mfs_shape_ctx *c, int nn, const double *d, const double *v, int self,
+                    int order, double *out, double *work, double *rcond)
+{
+  (void)v;
+  (void)self;
+  int dim = c->dim, m = 1 + dim, os = mfs_shape_ncomp(dim, order), st = 1 + dim + dim * dim;
+  double ia = 1.0 / c->a, A[MAXM * MAXM] = {0}, dA[MAXD][MAXM * MAXM] = {{0}};
+  kernel_values(c, nn, d, order, work);
+  for (int J = 0; J < nn; J++) {
+    const double *k = work + J * st;
+    double p[MAXM] = {1.0};
+    for (int i = 1; i < m; i++)
+      p[i] = d[J * dim + i - 1] * ia;
+    for (int i = 0; i < m; i++)
+      for (int j = 0; j < m; j++) {
+        A[i * m + j] += k[0] * p[i] * p[j];
+        for (int n = 0; n < dim && order >= 2; n++) {
+          double dpi = i == n + 1 ? -ia : 0.0, dpj = j == n + 1 ? -ia : 0.0;
+          dA[n][i * m + j] += k[1 + n] * p[i] * p[j] + k[0] * (dpi * p[j] + p[i] * dpj);
+        }
+      }
+  }
+  double L[MAXM * MAXM] = {0}, Ainv[MAXM * MAXM];
+  *rcond = 0.0;
+  if (cholesky(m, A, L))
+    return MFS_ESINGULAR;
+  for (int j = 0; j < m; j++) {
+    double e[MAXM] = {0};
+    e[j] = 1.0;
+    chol_solve(m, L, e);
+    for (int i = 0; i < m; i++)
+      Ainv[i * m + j] = e[i];
+  }
+  *rcond = rcond_from(m, A, Ainv);
+  if (*rcond < c->rcond_min || *rcond == 0.0)
+    return MFS_ESINGULAR;
+  for (int J = 0; J < nn; J++) {
+    const double *k = work + J * st;
+    double p[MAXM] = {1.0}, q[MAXM] = {0};
+    for (int i = 1; i < m; i++)
+      p[i] = d[J * dim + i - 1] * ia;
+    for (int i = 0; i < m; i++) {
+      q[i] = 0.0;
+      for (int j = 0; j < m; j++)
+        q[i] += Ainv[i * m + j] * p[j];
+    }
+    double *o = out + (size_t)J * os;
+    o[0] = q[0] * k[0];
+    for (int l = 0; l < dim; l++)
+      o[1 + l] = q[1 + l] * k[0] * ia;
+    if (order < 2)
+      continue;
+    for (int n = 0; n < dim; n++) {
+      double r[MAXM], dq[MAXM];
+      for (int i = 0; i < m; i++) {
+        r[i] = i == n + 1 ? -ia : 0.0;
+        for (int j = 0; j < m; j++)
+          r[i] -= dA[n][i * m + j] * q[j];
+      }
+      for (int i = 0; i < m; i++) {
+        dq[i] = 0.0;
+        for (int j = 0; j < m; j++)
+          dq[i] += Ainv[i * m + j] * r[j];
+      }
+      for (int l = 0; l < dim; l++)
+        o[1 + dim + l * dim + n] = (dq[1 + l] * k[0] + q[1 + l] * k[1 + n]) * ia;
+    }
+  }
+  return MFS_OK;
 }
 
 const mfs_shape_type mfs_shape_sph = {.name = "sph",
@@ -980,18 +1155,29 @@ const mfs_shape_type mfs_shape_mls = {.name = "mls",
                                       .partition_of_unity = 1,
                                       .linear_complete = 1,
                                       .gradient_is_derivative = 1,
+                                      .gradient_linear = 1,
                                       .eval = mls_eval,
                                       .dpos_1d = mls_dpos,
                                       .gather_1d = mls_gather_1d,
                                       .dpos = mls_dpos_dim,
                                       .dpos_grad = mls_dpos_grad};
-const mfs_shape_type mfs_shape_kb = {.name = "kb", .partition_of_unity = 1, .eval = kb_eval};
-const mfs_shape_type mfs_shape_rl = {
-  .name = "rl", .uses_volumes = 1, .partition_of_unity = 1, .eval = rl_eval};
+const mfs_shape_type mfs_shape_kb = {
+  .name = "kb", .partition_of_unity = 1, .gradient_linear = 1, .eval = kb_eval};
+const mfs_shape_type mfs_shape_rl = {.name = "rl",
+                                     .uses_volumes = 1,
+                                     .partition_of_unity = 1,
+                                     .gradient_linear = 1,
+                                     .uses_self = 1,
+                                     .eval = rl_eval};
+const mfs_shape_type mfs_shape_sphs = {
+  .name = "sphs", .uses_volumes = 1, .partition_of_unity = 1, .uses_self = 1, .eval = sphs_eval};
+const mfs_shape_type mfs_shape_cd2 = {
+  .name = "cd2", .partition_of_unity = 1, .linear_complete = 1, .gradient_linear = 1,
+  .eval = cd2_eval};
 
-const mfs_shape_type *const mfs_shape_types[] = {&mfs_shape_sph, &mfs_shape_shepard,
-                                                  &mfs_shape_mls, &mfs_shape_kb, &mfs_shape_rl,
-                                                  NULL};
+const mfs_shape_type *const mfs_shape_types[] = {
+  &mfs_shape_sph, &mfs_shape_shepard, &mfs_shape_mls, &mfs_shape_kb,
+  &mfs_shape_rl,  &mfs_shape_sphs,    &mfs_shape_cd2, NULL};
 
 const mfs_shape_type *mfs_shape_find(const char *name)
 {

@@ -6,9 +6,15 @@
  *   mls      linear MLS, basis shifted to X, scaled by a   (003 eqs 36-39)
  *   kb       values Shepard; gradient Krongauz-Belytschko corrected (000 eqs 26-32)
  *   rl       values V-weighted Shepard; gradient Randles-Libersky normalized
- *            symmetrized SPH gradient (000 eqs 33-34)
+ *            symmetrized SPH gradient (000 eqs 33-34; 004 eqs 68-69)
+ *   sphs     values V-weighted Shepard; gradient the symmetrized SPH gradient
+ *            without the normalization (004 eq. 47; 000 eq. 33)
+ *   cd2      values MLS; gradient the diffuse (Nayroles) derivative of the
+ *            linear MLS fit, corrected derivatives method 2 (004 eqs 63-64)
  *
- * The RL symmetrization subtracts the value at X.  At a particle (`self` >= 0,
+ * kb is the corrected derivative method 1 of paper 004 (eqs 55-61, section
+ * 4.4.3): the same correction of the Shepard gradient.
+ * The RL (and sphs) symmetrization subtracts the value at X.  At a particle (`self` >= 0,
  * nodal quadrature) that is the particle's own value, exactly eq. 33; at any
  * other point it is the Shepard interpolant, which keeps the corrected
  * gradient exact for linear fields there too.
@@ -80,7 +86,11 @@ typedef struct {
   int partition_of_unity;     /* sum_J phi_J = 1 (all but sph) */
   int linear_complete;        /* the values reproduce linear fields (mls) */
   int gradient_is_derivative; /* the gradient is d phi / dX, not a corrected gradient
-                                 (sph, shepard, mls; not kb, rl) */
+                                 (sph, shepard, mls; not kb, rl, sphs, cd2) */
+  int gradient_linear;        /* the gradient reproduces the gradient of linear fields:
+                                 sum_J G_J (X_J - X)^T = I (mls, kb, rl, cd2) */
+  int uses_self;              /* the result depends on `self` (rl, sphs: the reference
+                                 value of the symmetrized gradient) */
   /* d: nn*dim offsets X_J - X; v: nn volumes (may be NULL if !uses_volumes);
    * self: index in 0..nn-1 of the neighbour located at X, or -1;
    * order: 1 or 2; out: nn*ncomp; work: mfs_shape_work_len(dim, nn) doubles;
@@ -106,6 +116,8 @@ extern const mfs_shape_type mfs_shape_shepard;
 extern const mfs_shape_type mfs_shape_mls;
 extern const mfs_shape_type mfs_shape_kb;
 extern const mfs_shape_type mfs_shape_rl;
+extern const mfs_shape_type mfs_shape_sphs;
+extern const mfs_shape_type mfs_shape_cd2;
 extern const mfs_shape_type *const mfs_shape_types[];
 
 const mfs_shape_type *mfs_shape_find(const char *name);

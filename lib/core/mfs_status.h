@@ -18,7 +18,8 @@ extern "C" {
   X(MFS_ELAPACK, 7, "LAPACK routine failed")                                      \
   X(MFS_EARPACK, 8, "ARPACK routine failed")                                      \
   X(MFS_EIO, 9, "input/output error")                                             \
-  X(MFS_EDOMAIN, 10, "numerical failure (non-finite value)")
+  X(MFS_EDOMAIN, 10, "numerical failure (non-finite value)")                     \
+  X(MFS_ESYSTEM, 11, "singular or badly conditioned linear system")
 
 typedef enum {
 #define MFS_X_ENUM(name, value, msg) name = value,
