@@ -57,7 +57,7 @@ int main(void)
     if (fabs(wb * wb - ws * ws) > 1e-12 * (1.0 + ws * ws))
       ok = 0;
   }
-  free(s);
+  mfs_free(s);
   mfs_disp_plan_free(pl);
   if (!ok)
     fprintf(stderr, "dispersion: the Bloch symbol and the stencil disagree\n");

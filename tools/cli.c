@@ -1,4 +1,5 @@
 #include "cli.h"
+#include "mfs_alloc.h"
 
 #include <errno.h>
 #include <fcntl.h>
@@ -212,10 +213,10 @@ static void set_value(const cli_opt *o, void *base, const char *val)
     size_t n = 1;
     for (const char *c = val; *c; c++)
       n += *c == ',';
-    double *v = malloc(n * sizeof *v);
-    char *copy = strdup(val);
-    cli_on_die(free, v);
-    cli_on_die(free, copy);
+    double *v = mfs_malloc(n * sizeof *v);
+    char *copy = mfs_strdup(val);
+    cli_on_die(mfs_free, v);
+    cli_on_die(mfs_free, copy);
     if (!v || !copy)
       cli_die(1, "out of memory");
     size_t k = 0;
@@ -239,8 +240,8 @@ static void set_value(const cli_opt *o, void *base, const char *val)
     }
     cli_on_die_pop();
     cli_on_die_pop();
-    free(copy);
-    free(l->v);
+    mfs_free(copy);
+    mfs_free(l->v);
     l->v = v;
     l->n = k;
     break;
@@ -669,36 +670,36 @@ static void track_tmp(char *tmp, int on)
  * Returns a malloc'ed path, or NULL with errno set. */
 static char *resolve_links(const char *path)
 {
-  char *p = strdup(path);
+  char *p = mfs_strdup(path);
   for (int hops = 0; p; hops++) {
     struct stat st;
     if (lstat(p, &st) != 0 || !S_ISLNK(st.st_mode))
       return p; /* missing or not a link: this is the target */
     if (hops == MAX_LINKS) {
-      free(p);
+      mfs_free(p);
       errno = ELOOP;
       return NULL;
     }
     char link[4096];
     ssize_t n = readlink(p, link, sizeof link - 1);
     if (n < 0) {
-      free(p);
+      mfs_free(p);
       return NULL;
     }
     link[n] = '\0';
     char *next;
     const char *slash = strrchr(p, '/');
     if (link[0] == '/' || !slash) {
-      next = strdup(link);
+      next = mfs_strdup(link);
     } else {
       size_t dlen = (size_t)(slash - p) + 1;
-      next = malloc(dlen + (size_t)n + 1);
+      next = mfs_malloc(dlen + (size_t)n + 1);
       if (next) {
         memcpy(next, p, dlen);
         memcpy(next + dlen, link, (size_t)n + 1);
       }
     }
-    free(p);
+    mfs_free(p);
     p = next;
   }
   errno = ENOMEM;
@@ -715,6 +716,8 @@ void cli_out_open(cli_out *o, const char *path)
   }
   install_signals();
   char *target = resolve_links(path);
+  if (!target && errno == ENOMEM)
+    cli_die(1, "out of memory");
   if (!target)
     cli_die(2, "-o %s: cannot resolve the path (%s)", path, strerror(errno));
   struct stat st;
@@ -724,7 +727,7 @@ void cli_out_open(cli_out *o, const char *path)
     int fd = open(target, O_WRONLY | O_NOCTTY);
     if (fd < 0) {
       int e = errno;
-      free(target);
+      mfs_free(target);
       cli_die(2, "-o %s: cannot open the device or FIFO for writing (%s)", path, strerror(e));
     }
     o->f = fdopen(fd, "w");
@@ -734,20 +737,20 @@ void cli_out_open(cli_out *o, const char *path)
     return;
   }
   if (exists && !S_ISREG(st.st_mode)) {
-    free(target);
+    mfs_free(target);
     cli_die(2, "-o %s: %s; allowed: a regular file, a new path, a character device or a FIFO",
             path, S_ISDIR(st.st_mode) ? "is a directory" : "is a block device or socket");
   }
   size_t len = strlen(target) + 16;
   o->path = target;
-  o->tmp = malloc(len);
+  o->tmp = mfs_malloc(len);
   if (!o->tmp)
     cli_die(1, "out of memory");
   snprintf(o->tmp, len, "%s.tmpXXXXXX", target);
   int fd = mkstemp(o->tmp);
   if (fd < 0) {
     int e = errno;
-    free(o->tmp);
+    mfs_free(o->tmp);
     o->tmp = NULL;
     cli_die(2, "-o %s: cannot create the output file (%s)", path, strerror(e));
   }
@@ -769,14 +772,14 @@ const char *cli_out_open_fmt(cli_out *o, const char *fmt, ...)
   va_start(ap, fmt);
   int n = vsnprintf(NULL, 0, fmt, ap);
   va_end(ap);
-  char *path = n >= 0 ? malloc((size_t)n + 1) : NULL;
+  char *path = n >= 0 ? mfs_malloc((size_t)n + 1) : NULL;
   if (!path)
     cli_die(1, "out of memory");
   va_start(ap, fmt);
   vsnprintf(path, (size_t)n + 1, fmt, ap);
   va_end(ap);
   cli_out_open(o, path);
-  free(path);
+  mfs_free(path);
   return o->path;
 }
 
@@ -790,8 +793,8 @@ void cli_out_abort(cli_out *o)
     remove(o->tmp);
     track_tmp(o->tmp, 0);
   }
-  free(o->tmp);
-  free(o->path);
+  mfs_free(o->tmp);
+  mfs_free(o->path);
   o->tmp = o->path = NULL;
   o->f = NULL;
 }
@@ -819,12 +822,12 @@ void cli_out_commit(cli_out *o)
   if (bad) {
     char *p = o->path;
     o->path = NULL;
-    free(o->tmp);
+    mfs_free(o->tmp);
     o->tmp = NULL;
     cli_die(1, "-o %s: cannot write the output file", p);
   }
-  free(o->tmp);
-  free(o->path);
+  mfs_free(o->tmp);
+  mfs_free(o->path);
   o->tmp = o->path = NULL;
 }
 

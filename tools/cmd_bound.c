@@ -10,6 +10,7 @@
 #include <string.h>
 
 #include "cli.h"
+#include "mfs_alloc.h"
 #include "commands.h"
 #include "eigs_figures.h"
 #include "model_run.h"
@@ -64,7 +65,7 @@ static void plan_build(const model_cmd *c, model_plan *mp)
   if (st != MFS_OK)
     model_die_status(c, st, bad, "at a quadrature point of the model");
   if (s->fixed != MFS_FIX_NONE) {
-    mp->fixed = malloc(mp->p->n);
+    mp->fixed = mfs_malloc(mp->p->n);
     if (!mp->fixed)
       cli_die(1, "out of memory");
     for (size_t I = 0; I < mp->p->n; I++)
@@ -77,7 +78,7 @@ static void plan_free(model_plan *mp)
   mfs_plan_free(mp->pl);
   mfs_quad_free(mp->q);
   mfs_particles_free(mp->p);
-  free(mp->fixed);
+  mfs_free(mp->fixed);
 }
 
 int cmd_bound(int argc, char **argv)

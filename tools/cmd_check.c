@@ -12,6 +12,7 @@
 #include <string.h>
 
 #include "cli.h"
+#include "mfs_alloc.h"
 #include "commands.h"
 #include "eigs_figures.h"
 #include "model_run.h"
@@ -409,8 +410,8 @@ int cmd_check(int argc, char **argv)
     fputc('\n', f);
     cli_out_commit(&out);
   }
-  free(spm);
-  free(layer);
+  mfs_free(spm);
+  mfs_free(layer);
   run_result_free(&r);
   model_cmd_free(&c);
   return 0;

@@ -11,6 +11,7 @@
 #include <string.h>
 
 #include "cli.h"
+#include "mfs_alloc.h"
 #include "commands.h"
 
 static const char usage[] = "mfstab dispersion [options] [-o FILE]";
@@ -244,8 +245,8 @@ int cmd_dispersion(int argc, char **argv)
   size_t nsig = o.stress.n ? o.stress.n : 1;
   size_t nth = o.theta.n ? o.theta.n : 1;
   const double *th = o.theta.n ? o.theta.v : &zero;
-  double *thr = malloc(nth * sizeof *thr);
-  mfs_disp_plan **plans = calloc(ndil, sizeof *plans);
+  double *thr = mfs_malloc(nth * sizeof *thr);
+  mfs_disp_plan **plans = mfs_calloc(ndil, sizeof *plans);
   if (!thr || !plans)
     cli_die(1, "out of memory");
   for (size_t t = 0; t < nth; t++)
@@ -287,9 +288,9 @@ int cmd_dispersion(int argc, char **argv)
   }
   int nk = o.kappa.n ? (int)o.kappa.n : (int)o.points;
   const int nb = mfs_disp_branches(plans[0]);
-  double *kap = malloc((size_t)nk * sizeof *kap);
-  double complex *w = malloc((size_t)nk * (size_t)nb * sizeof *w);
-  mfs_class *cls = malloc(nsig * sizeof *cls);
+  double *kap = mfs_malloc((size_t)nk * sizeof *kap);
+  double complex *w = mfs_malloc((size_t)nk * (size_t)nb * sizeof *w);
+  mfs_class *cls = mfs_malloc(nsig * sizeof *cls);
   if (!kap || !w || !cls)
     cli_die(1, "out of memory");
   const char *latn = disc.source.lattice == MFS_LATTICE_LINE  ? "line"
@@ -401,14 +402,14 @@ int cmd_dispersion(int argc, char **argv)
   cli_out_commit(&out);
   for (size_t i = 0; i < ndil; i++)
     mfs_disp_plan_free(plans[i]);
-  free(plans);
-  free(kap);
-  free(w);
-  free(cls);
-  free(thr);
-  free(d.dilation.v);
-  free(o.stress.v);
-  free(o.theta.v);
-  free(o.kappa.v);
+  mfs_free(plans);
+  mfs_free(kap);
+  mfs_free(w);
+  mfs_free(cls);
+  mfs_free(thr);
+  mfs_free(d.dilation.v);
+  mfs_free(o.stress.v);
+  mfs_free(o.theta.v);
+  mfs_free(o.kappa.v);
   return 0;
 }

@@ -10,6 +10,7 @@
 #include <string.h>
 
 #include "cli.h"
+#include "mfs_alloc.h"
 #include "commands.h"
 #include "eigs_figures.h"
 #include "model_run.h"
@@ -396,7 +397,7 @@ void model_finish(model_cmd *c, const cli_group *dg, const cli_group *pg, const 
   if (o->length) {
     double v[3];
     size_t k = 0;
-    char *copy = strdup(o->length);
+    char *copy = mfs_strdup(o->length);
     if (!copy)
       cli_die(1, "out of memory");
     for (char *s = strtok(copy, ","); s; s = strtok(NULL, ",")) {
@@ -404,7 +405,7 @@ void model_finish(model_cmd *c, const cli_group *dg, const cli_group *pg, const 
         cli_die(2, "--length %s: expected L (1D) or LX,LY (2D), lengths > 0", o->length);
       k++;
     }
-    free(copy);
+    mfs_free(copy);
     if (k == 0)
       cli_die(2, "--length '%s': expected L (1D) or LX,LY (2D), lengths > 0", o->length);
     if (k > (size_t)dim)
@@ -473,8 +474,8 @@ void model_cmd_free(model_cmd *c)
 {
   if (c->have_file)
     particle_file_free(&c->pf);
-  free(c->fix_mask);
-  free(c->d.dilation.v);
+  mfs_free(c->fix_mask);
+  mfs_free(c->d.dilation.v);
   c->fix_mask = NULL;
   c->have_file = 0;
 }
@@ -645,7 +646,7 @@ static int cmp_dbl(const void *a, const void *b)
 /* min, median, max of v[0..n) over the defined (not NAN) values; NAN if none. */
 static void stats3(const double *v, size_t n, double *out)
 {
-  double *t = malloc((n ? n : 1) * sizeof *t);
+  double *t = mfs_malloc((n ? n : 1) * sizeof *t);
   if (!t)
     cli_die(1, "out of memory");
   size_t k = 0;
@@ -660,7 +661,7 @@ static void stats3(const double *v, size_t n, double *out)
     out[1] = k % 2 ? t[k / 2] : 0.5 * (t[k / 2 - 1] + t[k / 2]);
     out[2] = t[k - 1];
   }
-  free(t);
+  mfs_free(t);
 }
 
 /* The result columns of one model. */
@@ -769,9 +770,9 @@ int cmd_eigs(int argc, char **argv)
                  .maxiter = e.maxiter, .arpack_tol = e.arpack_tol, .certify = c.m.certify,
                  .keep = 1};
   size_t nrun = nseeds ? (size_t)nseeds : 1;
-  run_result *rr = calloc(nrun, sizeof *rr);
-  double *lv = malloc(nrun * sizeof *lv), *zv = malloc(nrun * sizeof *zv),
-         *nv = malloc(nrun * sizeof *nv);
+  run_result *rr = mfs_calloc(nrun, sizeof *rr);
+  double *lv = mfs_malloc(nrun * sizeof *lv), *zv = mfs_malloc(nrun * sizeof *zv),
+         *nv = mfs_malloc(nrun * sizeof *nv);
   if (!rr || !lv || !zv || !nv)
     cli_die(1, "out of memory");
   unsigned long seed0 = c.s.disc.source.seed;
@@ -788,9 +789,9 @@ int cmd_eigs(int argc, char **argv)
     nv[k] = (double)rr[k].br.negative_phi;
     nbad += rr[k].nonpositive > 0;
     if (nseeds) { /* keep only what the row needs */
-      free(rr[k].vmax);
+      mfs_free(rr[k].vmax);
       rr[k].vmax = NULL;
-      free(rr[k].z.modes);
+      mfs_free(rr[k].z.modes);
       rr[k].z.modes = NULL;
     }
   }
@@ -853,10 +854,10 @@ int cmd_eigs(int argc, char **argv)
     }
     run_result_free(&rr[k]);
   }
-  free(rr);
-  free(lv);
-  free(zv);
-  free(nv);
+  mfs_free(rr);
+  mfs_free(lv);
+  mfs_free(zv);
+  mfs_free(nv);
   model_cmd_free(&c);
   return 0;
 }

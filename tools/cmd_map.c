@@ -10,6 +10,7 @@
 #include <string.h>
 
 #include "cli.h"
+#include "mfs_alloc.h"
 #include "commands.h"
 
 static const char usage[] = "mfstab map [options] (--stretch-range FROM:TO:N | --stress-range FROM:TO:N) [-o FILE]";
@@ -104,7 +105,7 @@ static double *parse_range(const char *opt, const char *s, int positive, long *n
     cli_die(2, "%s '%s': N = 1 needs FROM = TO", opt, s);
   if (positive && (!(lo > 0.0) || !(hi > 0.0)))
     cli_die(2, "%s '%s': stretches must be > 0", opt, s);
-  double *v = malloc((size_t)k * sizeof *v);
+  double *v = mfs_malloc((size_t)k * sizeof *v);
   if (!v)
     cli_die(1, "out of memory");
   for (long i = 0; i < k; i++)
@@ -300,8 +301,8 @@ int cmd_map(int argc, char **argv)
   size_t ndil = d.dilation.n ? d.dilation.n : 1;
 
   size_t nz = (size_t)(o.directions * o.wavenumbers), nw = (size_t)o.wavenumbers + 2;
-  double *kz = malloc(2 * nz * sizeof *kz), *kall = malloc(2 * (nz + nw) * sizeof *kall);
-  double complex *w = malloc((nz + nw) * 4 * sizeof *w);
+  double *kz = mfs_malloc(2 * nz * sizeof *kz), *kall = mfs_malloc(2 * (nz + nw) * sizeof *kall);
+  double complex *w = mfs_malloc((nz + nw) * 4 * sizeof *w);
   if (!kz || !kall || !w)
     cli_die(1, "out of memory");
   const char *latn = disc.source.lattice == MFS_LATTICE_HEX ? "hex" : "square";
@@ -409,10 +410,10 @@ int cmd_map(int argc, char **argv)
       mfs_disp_plan_free(pl);
     }
   cli_out_commit(&out);
-  free(grid);
-  free(kz);
-  free(kall);
-  free(w);
-  free(d.dilation.v);
+  mfs_free(grid);
+  mfs_free(kz);
+  mfs_free(kall);
+  mfs_free(w);
+  mfs_free(d.dilation.v);
   return 0;
 }

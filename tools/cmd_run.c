@@ -12,6 +12,7 @@
 #include <unistd.h>
 
 #include "cli.h"
+#include "mfs_alloc.h"
 #include "commands.h"
 #include "scene.h"
 
@@ -295,7 +296,7 @@ static void initial_state(const scene *sc, mfs_integrator *in, size_t center)
   in->type->state(in->solver, &s);
   size_t n = s.n;
   int comp = sc->component, disp = s.u != NULL;
-  double *u0 = calloc(n, sizeof *u0), *v0 = calloc(n, sizeof *v0);
+  double *u0 = mfs_calloc(n, sizeof *u0), *v0 = mfs_calloc(n, sizeof *v0);
   if (!u0 || !v0)
     cli_die(1, "out of memory");
   if (sc->perturbation > 0.0) {
@@ -333,8 +334,8 @@ static void initial_state(const scene *sc, mfs_integrator *in, size_t center)
   mfs_status st = in->type->set_state(in->solver, disp ? u0 : NULL, v0);
   if (st != MFS_OK)
     die_run(sc, in->type, st, 0, 0.0);
-  free(u0);
-  free(v0);
+  mfs_free(u0);
+  mfs_free(v0);
 }
 
 /* The point of xq (nq first coordinates) nearest x, the first of ties. */
@@ -404,7 +405,7 @@ int cmd_run(int argc, char **argv)
   }
   double *ec = NULL;
   if (need_mode && s.dim == 2) {
-    ec = malloc(2 * s.n * sizeof *ec);
+    ec = mfs_malloc(2 * s.n * sizeof *ec);
     if (!ec)
       cli_die(1, "out of memory");
     double kx = 2.0 * M_PI * sc.mode_x / src->lx, ky = 2.0 * M_PI * sc.mode_y / sc.ly;
@@ -465,7 +466,7 @@ int cmd_run(int argc, char **argv)
     }
     progress(tty, k, nsteps, &shown);
   }
-  free(ec);
+  mfs_free(ec);
   T->free(in.solver);
   cli_out_commit(&out);
   return 0;

@@ -9,6 +9,7 @@
 #include <string.h>
 
 #include "cli.h"
+#include "mfs_alloc.h"
 #include "commands.h"
 
 static const char usage[] = "mfstab static [options] [-o FILE]";
@@ -147,7 +148,7 @@ static size_t parse_methods(const char *arg, const mfs_static_method **out)
     return n;
   }
   size_t n = 0;
-  char *copy = strdup(arg);
+  char *copy = mfs_strdup(arg);
   if (!copy)
     cli_die(1, "out of memory");
   for (char *s = copy;;) {
@@ -166,14 +167,14 @@ static size_t parse_methods(const char *arg, const mfs_static_method **out)
       break;
     s = comma + 1;
   }
-  free(copy);
+  mfs_free(copy);
   return n;
 }
 
 /* --nodes NX,NY (beam) or N (plate-hole). */
 static void parse_nodes(const char *arg, int beam, int *nx, int *ny)
 {
-  char *copy = strdup(arg);
+  char *copy = mfs_strdup(arg);
   if (!copy)
     cli_die(1, "out of memory");
   char *comma = strchr(copy, ',');
@@ -194,7 +195,7 @@ static void parse_nodes(const char *arg, int beam, int *nx, int *ny)
     cli_die(2, "--nodes '%s': NY = %ld out of range; allowed %ld to %ld", arg, b, lo, hi);
   *nx = (int)a;
   *ny = beam ? (int)b : (int)a;
-  free(copy);
+  mfs_free(copy);
 }
 
 /* One model, assembled and solved; dies with the right message and code. */
@@ -277,7 +278,7 @@ static void nodal_csv(FILE *f, const mfs_static_spec *base, const mfs_static_met
     s.method = ms[k];
     mfs_static *m = run_model(&s, o, 1);
     size_t n = mfs_static_nnodes(m);
-    double *uh = malloc(2 * n * sizeof *uh), *ue = malloc(2 * n * sizeof *ue);
+    double *uh = mfs_malloc(2 * n * sizeof *uh), *ue = mfs_malloc(2 * n * sizeof *ue);
     if (!uh || !ue)
       cli_die(1, "out of memory");
     mfs_status st = mfs_static_nodal_solution(m, uh, ue);
@@ -296,8 +297,8 @@ static void nodal_csv(FILE *f, const mfs_static_spec *base, const mfs_static_met
       put(f, ue[2 * I], 0);
       put(f, ue[2 * I + 1], 1);
     }
-    free(uh);
-    free(ue);
+    mfs_free(uh);
+    mfs_free(ue);
     mfs_static_free(m);
   }
 }
@@ -320,10 +321,10 @@ static void study_csv(FILE *f, const mfs_static_spec *base, const mfs_static_met
         "backward_error,l2_error_norm,L2_error_norm,energy_error_norm,energy_nodal_error_norm,"
         "rate_l2,rate_L2,rate_energy,rate_energy_nodal,local_rate_L2,local_rate_energy\n",
         f);
-  level_row *rows = malloc(L * sizeof *rows);
-  double *h = malloc(L * sizeof *h), *e[4];
+  level_row *rows = mfs_malloc(L * sizeof *rows);
+  double *h = mfs_malloc(L * sizeof *h), *e[4];
   for (int k = 0; k < 4; k++)
-    e[k] = malloc(L * sizeof *e[k]);
+    e[k] = mfs_malloc(L * sizeof *e[k]);
   if (!rows || !h || !e[0] || !e[1] || !e[2] || !e[3])
     cli_die(1, "out of memory");
   for (size_t k = 0; k < nm; k++) {
@@ -379,10 +380,10 @@ static void study_csv(FILE *f, const mfs_static_spec *base, const mfs_static_met
       put(f, le, 1);
     }
   }
-  free(rows);
-  free(h);
+  mfs_free(rows);
+  mfs_free(h);
   for (int k = 0; k < 4; k++)
-    free(e[k]);
+    mfs_free(e[k]);
 }
 
 static void patch_csv(FILE *f, const mfs_static_spec *base, const mfs_static_method **ms,

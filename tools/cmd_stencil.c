@@ -6,6 +6,7 @@
 #include <string.h>
 
 #include "cli.h"
+#include "mfs_alloc.h"
 #include "commands.h"
 
 static const char usage[] = "mfstab stencil [options] [-o FILE]";
@@ -55,8 +56,8 @@ int cmd_stencil(int argc, char **argv)
     cli_fmt(m, sizeof m, e[i].M);
     fprintf(out.f, "%d,%d,%s,%s\n", e[i].j, e[i].k, k, m);
   }
-  free(e);
-  free(d.dilation.v);
+  mfs_free(e);
+  mfs_free(d.dilation.v);
   cli_out_commit(&out);
   return 0;
 }

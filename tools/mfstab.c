@@ -34,21 +34,31 @@ enum { NCMDS = sizeof cmds / sizeof cmds[0] };
  * MFSTAB_ALLOC_COUNT=FILE writes the number of allocations made to FILE at
  * exit.  Through mfs_set_allocator (lib/core/mfs_alloc.h). */
 static long alloc_made, alloc_fail;
+static int alloc_abort; /* MFSTAB_ALLOC_ABORT=1: abort at the failing one (for a debugger) */
 static const char *alloc_count_path;
+
+static int fail_this(void)
+{
+  if (++alloc_made != alloc_fail)
+    return 0;
+  if (alloc_abort)
+    abort();
+  return 1;
+}
 
 static void *test_malloc(size_t n)
 {
-  return ++alloc_made == alloc_fail ? NULL : malloc(n);
+  return fail_this() ? NULL : malloc(n);
 }
 
 static void *test_calloc(size_t c, size_t n)
 {
-  return ++alloc_made == alloc_fail ? NULL : calloc(c, n);
+  return fail_this() ? NULL : calloc(c, n);
 }
 
 static void *test_realloc(void *p, size_t n)
 {
-  return ++alloc_made == alloc_fail ? NULL : realloc(p, n);
+  return fail_this() ? NULL : realloc(p, n);
 }
 
 static void write_alloc_count(void)
@@ -67,6 +77,7 @@ static void alloc_hooks(void)
   if (!k && !alloc_count_path)
     return;
   alloc_fail = k ? atol(k) : 0;
+  alloc_abort = getenv("MFSTAB_ALLOC_ABORT") != NULL;
   static const mfs_allocator counting = {test_malloc, test_calloc, test_realloc, free};
   mfs_set_allocator(&counting);
   if (alloc_count_path)

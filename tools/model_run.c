@@ -1,4 +1,5 @@
 #include "model_run.h"
+#include "mfs_alloc.h"
 
 #include <math.h>
 #include <stdlib.h>
@@ -108,7 +109,7 @@ void model_run(const model_cmd *c, const run_opts *o, run_result *r)
   mfs_eig_opts eo = {(int)o->ncv, (int)o->maxiter, o->arpack_tol};
   mfs_eig_info info;
   if (o->keep) {
-    r->vmax = malloc(m->n * sizeof *r->vmax);
+    r->vmax = mfs_malloc(m->n * sizeof *r->vmax);
     if (!r->vmax)
       cli_die(1, "out of memory");
   }
@@ -132,19 +133,19 @@ void model_run(const model_cmd *c, const run_opts *o, run_result *r)
     r->zero_runs = zinfo.runs;
     int nr = mfs_model_rigid_fields(m, NULL);
     if (nr > 0) {
-      double *rf = malloc((size_t)nr * m->n * sizeof *rf);
+      double *rf = mfs_malloc((size_t)nr * m->n * sizeof *rf);
       if (!rf)
         cli_die(1, "out of memory");
       mfs_model_rigid_fields(m, rf);
       for (int k = 0; k < nr; k++) {
         int null;
         if (mfs_eig_is_null(&P, rf + (size_t)k * m->n, r->lambda, o->tol, &null) != MFS_OK) {
-          free(rf);
+          mfs_free(rf);
           cli_die(1, "zero-energy modes: out of memory");
         }
         r->rigid += null;
       }
-      free(rf);
+      mfs_free(rf);
     }
   }
   if (o->certify) {
@@ -166,8 +167,8 @@ done:
 void run_result_free(run_result *r)
 {
   mfs_model_free(r->m);
-  free(r->vmax);
-  free(r->z.modes);
+  mfs_free(r->vmax);
+  mfs_free(r->z.modes);
   memset(r, 0, sizeof *r);
 }
 
@@ -178,14 +179,14 @@ unsigned char *model_boundary_layer(const mfs_model *m)
 {
   const mfs_particles *p = m->p;
   size_t n = p->n, nb = 0;
-  unsigned char *layer = calloc(n ? n : 1, 1);
+  unsigned char *layer = mfs_calloc(n ? n : 1, 1);
   if (!layer)
     cli_die(1, "out of memory");
   for (size_t I = 0; I < n; I++)
     nb += p->flags[I] != 0;
   if (nb == 0 || p->box.periodic)
     return layer;
-  double *xb = malloc(nb * (size_t)p->dim * sizeof *xb);
+  double *xb = mfs_malloc(nb * (size_t)p->dim * sizeof *xb);
   if (!xb)
     cli_die(1, "out of memory");
   size_t k = 0;
@@ -203,7 +204,7 @@ unsigned char *model_boundary_layer(const mfs_model *m)
     layer[I] = nl->ptr[I + 1] > nl->ptr[I];
   mfs_nlist_free(nl);
   mfs_grid_free(g);
-  free(xb);
+  mfs_free(xb);
   return layer;
 }
 
@@ -211,7 +212,7 @@ void mode_describe(const mfs_model *m, const unsigned char *layer, const double 
 {
   const mfs_particles *p = m->p;
   size_t np = p->n;
-  double *a2 = calloc(np ? np : 1, sizeof *a2);
+  double *a2 = mfs_calloc(np ? np : 1, sizeof *a2);
   if (!a2)
     cli_die(1, "out of memory");
   for (size_t i = 0; i < m->n; i++)
@@ -236,7 +237,7 @@ void mode_describe(const mfs_model *m, const unsigned char *layer, const double 
       mi->peak_particle = I;
     }
   }
-  free(a2);
+  mfs_free(a2);
   mi->participation = s4 > 0.0 ? s2 * s2 / ((double)nfree * s4) : NAN;
   mi->boundary_share = e > 0.0 ? eb / e : NAN;
   mi->layer_share = v > 0.0 ? vb / v : NAN;
@@ -294,8 +295,8 @@ double *model_spurious_modes(const mfs_model *m, const run_result *r, int *count
     return NULL;
   size_t n = m->n;
   int nz = r->z.count, nr = mfs_model_rigid_fields(m, NULL);
-  double *B = malloc((size_t)(nr + nz) * n * sizeof *B), *MB = malloc((size_t)(nr + nz) * n * sizeof *MB);
-  double *R = nr ? malloc((size_t)nr * n * sizeof *R) : NULL;
+  double *B = mfs_malloc((size_t)(nr + nz) * n * sizeof *B), *MB = mfs_malloc((size_t)(nr + nz) * n * sizeof *MB);
+  double *R = nr ? mfs_malloc((size_t)nr * n * sizeof *R) : NULL;
   if (!B || !MB || (nr && !R))
     cli_die(1, "out of memory");
   mfs_pencil P = {m->K, m->M, m->m};
@@ -313,11 +314,11 @@ double *model_spurious_modes(const mfs_model *m, const run_result *r, int *count
   int k0 = k;
   for (int t = 0; t < nz; t++)
     k += orth_append(m, B, MB, k, r->z.modes + (size_t)t * n);
-  free(R);
-  free(MB);
+  mfs_free(R);
+  mfs_free(MB);
   *count = k - k0;
   if (*count == 0) {
-    free(B);
+    mfs_free(B);
     return NULL;
   }
   memmove(B, B + (size_t)k0 * n, (size_t)*count * n * sizeof *B);
@@ -347,9 +348,9 @@ void write_modes(const model_cmd *c, const run_result *r, const char *prefix)
   int nsp = 0;
   double *sp = model_spurious_modes(m, r, &nsp);
   int nm = nsp + 1;
-  const double **U = malloc((size_t)nm * sizeof *U);
-  mode_info *mi = malloc((size_t)nm * sizeof *mi);
-  long *where = malloc(p->n * (size_t)m->ndof * sizeof *where);
+  const double **U = mfs_malloc((size_t)nm * sizeof *U);
+  mode_info *mi = mfs_malloc((size_t)nm * sizeof *mi);
+  long *where = mfs_malloc(p->n * (size_t)m->ndof * sizeof *where);
   if (!U || !mi || !where)
     cli_die(1, "out of memory");
   for (size_t f = 0; f < p->n * (size_t)m->ndof; f++)
@@ -433,9 +434,9 @@ void write_modes(const model_cmd *c, const run_result *r, const char *prefix)
     }
   }
   cli_out_commit(&o);
-  free(layer);
-  free(where);
-  free(mi);
-  free(U);
-  free(sp);
+  mfs_free(layer);
+  mfs_free(where);
+  mfs_free(mi);
+  mfs_free(U);
+  mfs_free(sp);
 }

@@ -1,4 +1,5 @@
 #include "particles_csv.h"
+#include "mfs_alloc.h"
 
 #include <errno.h>
 #include <math.h>
@@ -63,7 +64,7 @@ static int label_id(particle_file *pf, label_map *m, const char *s)
 {
   if ((size_t)(pf->ngroups + 1) * 2 > m->cap) { /* grow and rehash */
     size_t cap = m->cap ? 2 * m->cap : 64;
-    int *slot = calloc(cap, sizeof *slot);
+    int *slot = mfs_calloc(cap, sizeof *slot);
     if (!slot)
       cli_die(1, "out of memory");
     for (int g = 0; g < pf->ngroups; g++) {
@@ -72,7 +73,7 @@ static int label_id(particle_file *pf, label_map *m, const char *s)
         i = (i + 1) & (cap - 1);
       slot[i] = g + 1;
     }
-    free(m->slot);
+    mfs_free(m->slot);
     m->slot = slot;
     m->cap = cap;
   }
@@ -82,11 +83,11 @@ static int label_id(particle_file *pf, label_map *m, const char *s)
       return m->slot[i] - 1;
     i = (i + 1) & (m->cap - 1);
   }
-  char **nn = realloc(pf->names, (size_t)(pf->ngroups + 1) * sizeof *nn);
+  char **nn = mfs_realloc(pf->names, (size_t)(pf->ngroups + 1) * sizeof *nn);
   if (!nn)
     cli_die(1, "out of memory");
   pf->names = nn;
-  if (!(pf->names[pf->ngroups] = strdup(s)))
+  if (!(pf->names[pf->ngroups] = mfs_strdup(s)))
     cli_die(1, "out of memory");
   m->slot[i] = ++pf->ngroups;
   return pf->ngroups - 1;
@@ -97,21 +98,21 @@ static int label_id(particle_file *pf, label_map *m, const char *s)
 static void grow(particle_file *pf, size_t *cap, int has_vol, int has_group)
 {
   size_t c = *cap ? 2 * *cap : 4096;
-  double *x = realloc(pf->x, c * (size_t)pf->dim * sizeof *x);
+  double *x = mfs_realloc(pf->x, c * (size_t)pf->dim * sizeof *x);
   if (x)
     pf->x = x;
-  size_t *ln = x ? realloc(pf->line, c * sizeof *ln) : NULL;
+  size_t *ln = x ? mfs_realloc(pf->line, c * sizeof *ln) : NULL;
   if (ln)
     pf->line = ln;
   int ok = x && ln;
   if (ok && has_vol) {
-    double *v = realloc(pf->vol, c * sizeof *v);
+    double *v = mfs_realloc(pf->vol, c * sizeof *v);
     ok = v != NULL;
     if (v)
       pf->vol = v;
   }
   if (ok && has_group) {
-    int *g = realloc(pf->group, c * sizeof *g);
+    int *g = mfs_realloc(pf->group, c * sizeof *g);
     ok = g != NULL;
     if (g)
       pf->group = g;
@@ -218,8 +219,8 @@ void particle_file_read(particle_file *pf, const char *path, double min_dist)
     pf->n++;
   }
   int rerr = ferror(f);
-  free(buf);
-  free(map.slot);
+  mfs_free(buf);
+  mfs_free(map.slot);
   fclose(f);
   if (rerr)
     cli_die(2, "--particles %s: read error", path);
@@ -272,7 +273,7 @@ void particle_file_volumes(particle_file *pf)
               pf->path);
     if (!p)
       cli_die(1, "%s: %s", pf->path, mfs_strerror(st));
-    pf->vol = malloc(pf->n * sizeof *pf->vol);
+    pf->vol = mfs_malloc(pf->n * sizeof *pf->vol);
     if (!pf->vol)
       cli_die(1, "out of memory");
     memcpy(pf->vol, p->vol, pf->n * sizeof *pf->vol);
@@ -285,13 +286,13 @@ void particle_file_volumes(particle_file *pf)
 
 void particle_file_free(particle_file *pf)
 {
-  free(pf->x);
-  free(pf->vol);
-  free(pf->group);
+  mfs_free(pf->x);
+  mfs_free(pf->vol);
+  mfs_free(pf->group);
   for (int g = 0; g < pf->ngroups; g++)
-    free(pf->names[g]);
-  free(pf->names);
-  free(pf->line);
+    mfs_free(pf->names[g]);
+  mfs_free(pf->names);
+  mfs_free(pf->line);
   memset(pf, 0, sizeof *pf);
 }
 
@@ -300,8 +301,8 @@ unsigned char *particle_file_fix_mask(const particle_file *pf, const char *group
   if (!pf->group)
     cli_die(2, "%s: --fix %s: the file has no group column to name the fixed particles", pf->path,
             groups);
-  unsigned char *mask = calloc(pf->n, 1), *want = calloc((size_t)pf->ngroups + 1, 1);
-  char *copy = strdup(groups);
+  unsigned char *mask = mfs_calloc(pf->n, 1), *want = mfs_calloc((size_t)pf->ngroups + 1, 1);
+  char *copy = mfs_strdup(groups);
   if (!mask || !want || !copy)
     cli_die(1, "out of memory");
   for (char *s = copy;;) {
@@ -330,8 +331,8 @@ unsigned char *particle_file_fix_mask(const particle_file *pf, const char *group
   }
   for (size_t I = 0; I < pf->n; I++)
     mask[I] = want[pf->group[I]];
-  free(copy);
-  free(want);
+  mfs_free(copy);
+  mfs_free(want);
   return mask;
 }
 

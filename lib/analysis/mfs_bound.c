@@ -1,4 +1,5 @@
 #include "mfs_bound.h"
+#include "mfs_alloc.h"
 
 #include <complex.h>
 #undef I
@@ -166,7 +167,7 @@ mfs_status mfs_bound_plan(const mfs_plan *pl, const mfs_material *mat,
     return MFS_EINVAL;
   unsigned char *act = NULL;
   if (fixed) {
-    act = malloc(mfs_plan_max_neighbours(pl));
+    act = mfs_malloc(mfs_plan_max_neighbours(pl));
     if (!act)
       return MFS_ENOMEM;
   }
@@ -182,7 +183,7 @@ mfs_status mfs_bound_plan(const mfs_plan *pl, const mfs_material *mat,
     result_add(r, lam, neg, Q, pt.x, dim, 1);
   }
   r->evaluated = nq;
-  free(act);
+  mfs_free(act);
   return MFS_OK;
 }
 
@@ -239,7 +240,7 @@ static int memo_grow(memo *m)
 {
   memo old = *m;
   m->cap = old.cap ? 2 * old.cap : 1024;
-  m->e = calloc(m->cap, sizeof *m->e);
+  m->e = mfs_calloc(m->cap, sizeof *m->e);
   if (!m->e) {
     *m = old;
     return MFS_ENOMEM;
@@ -252,7 +253,7 @@ static int memo_grow(memo *m)
       *e = old.e[i];
       m->count++;
     }
-  free(old.e);
+  mfs_free(old.e);
   return MFS_OK;
 }
 
@@ -334,7 +335,7 @@ static mfs_status bound_by_plan(const mfs_model_spec *spec, mfs_bound_result *r,
     goto done;
   if (spec->fixed != MFS_FIX_NONE) {
     st = MFS_ENOMEM;
-    fixed = malloc(p->n);
+    fixed = mfs_malloc(p->n);
     if (!fixed)
       goto done;
     for (size_t I = 0; I < p->n; I++)
@@ -342,7 +343,7 @@ static mfs_status bound_by_plan(const mfs_model_spec *spec, mfs_bound_result *r,
   }
   st = mfs_bound_plan(pl, &disc->material, fixed, r);
 done:
-  free(fixed);
+  mfs_free(fixed);
   mfs_plan_free(pl);
   mfs_quad_free(q);
   mfs_particles_free(p);
@@ -381,12 +382,12 @@ mfs_status mfs_bound_model(const mfs_model_spec *spec, mfs_bound_result *r, size
   if (st != MFS_OK)
     goto done;
   st = MFS_ENOMEM;
-  wx = malloc((size_t)(2 * Bx + 2 + nx) * sizeof *wx);
-  wy = malloc((size_t)(2 * By + 2 + ny) * sizeof *wy);
-  cand = malloc(maxnn * sizeof *cand);
-  nb = malloc(maxnn * sizeof *nb);
-  tab = malloc(maxnn * ncomp * sizeof *tab);
-  act = malloc(maxnn);
+  wx = mfs_malloc((size_t)(2 * Bx + 2 + nx) * sizeof *wx);
+  wy = mfs_malloc((size_t)(2 * By + 2 + ny) * sizeof *wy);
+  cand = mfs_malloc(maxnn * sizeof *cand);
+  nb = mfs_malloc(maxnn * sizeof *nb);
+  tab = mfs_malloc(maxnn * ncomp * sizeof *tab);
+  act = mfs_malloc(maxnn);
   if (!wx || !wy || !cand || !nb || !tab || !act || memo_grow(&mm) != MFS_OK)
     goto done;
   const mfs_material mat = disc->material;
@@ -439,13 +440,13 @@ mfs_status mfs_bound_model(const mfs_model_spec *spec, mfs_bound_result *r, size
   st = MFS_OK;
 done:
   mfs_eval_free(&ev);
-  free(mm.e);
-  free(wx);
-  free(wy);
-  free(cand);
-  free(nb);
-  free(tab);
-  free(act);
+  mfs_free(mm.e);
+  mfs_free(wx);
+  mfs_free(wy);
+  mfs_free(cand);
+  mfs_free(nb);
+  mfs_free(tab);
+  mfs_free(act);
   mfs_quad_free(q);
   mfs_particles_free(p);
   return st;
@@ -682,7 +683,7 @@ mfs_status mfs_gershgorin_plan(const mfs_plan *pl, const mfs_material *mat,
     return MFS_EINVAL;
   const mfs_particles *p = mfs_plan_particles(pl);
   int ndof = mfs_physics_ndof(mat->physics), nd2 = ndof * ndof;
-  double *ml = malloc(p->n * (size_t)ndof * sizeof *ml);
+  double *ml = mfs_malloc(p->n * (size_t)ndof * sizeof *ml);
   if (!ml)
     return MFS_ENOMEM;
   mfs_status st = mfs_assemble_mass_lumped(pl, mat, ml);
@@ -691,7 +692,7 @@ mfs_status mfs_gershgorin_plan(const mfs_plan *pl, const mfs_material *mat,
   if (st == MFS_OK)
     st = mfs_row_init(&row, pl, &f);
   if (st != MFS_OK) {
-    free(ml);
+    mfs_free(ml);
     return st;
   }
   for (size_t I = 0; I < p->n && st == MFS_OK; I++) {
@@ -712,7 +713,7 @@ mfs_status mfs_gershgorin_plan(const mfs_plan *pl, const mfs_material *mat,
     }
   }
   mfs_row_free(&row);
-  free(ml);
+  mfs_free(ml);
   gersh_finish(r);
   return st;
 }

@@ -1,4 +1,5 @@
 #include "mfs_classify.h"
+#include "mfs_alloc.h"
 
 #include <complex.h>
 #undef I
@@ -141,7 +142,7 @@ mfs_status mfs_classify(const mfs_disp_plan *pl, const mfs_sampling *smp, const 
     return MFS_EINVAL;
   const int nb = mfs_disp_branches(pl), nk = (int)nsamples(smp);
   double complex buf[4];
-  double complex *w = malloc((size_t)nk * (size_t)nb * sizeof *w);
+  double complex *w = mfs_malloc((size_t)nk * (size_t)nb * sizeof *w);
   if (!w)
     return MFS_ENOMEM;
   mfs_status st = MFS_OK;
@@ -238,7 +239,7 @@ mfs_status mfs_classify(const mfs_disp_plan *pl, const mfs_sampling *smp, const 
     c.labels = mfs_class_labels(c.unstable, &c.pde, c.sigma_nn, smean, nzero0);
     out[si] = c;
   }
-  free(w);
+  mfs_free(w);
   return st;
 }
 

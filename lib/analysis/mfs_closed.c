@@ -44,6 +44,7 @@
  * rows and this file evaluates their symbols directly, a path independent of
  * the factored form. */
 #include "mfs_closed.h"
+#include "mfs_alloc.h"
 
 #include <math.h>
 #include <stdlib.h>
@@ -88,13 +89,13 @@ void mfs_cf_plan_free(mfs_cf_plan *p)
 {
   if (!p)
     return;
-  free(p->xn);
-  free(p->xm);
-  free(p->tn);
-  free(p->tm);
-  free(p->Mrow);
-  free(p->Krow);
-  free(p);
+  mfs_free(p->xn);
+  mfs_free(p->xm);
+  mfs_free(p->tn);
+  mfs_free(p->tm);
+  mfs_free(p->Mrow);
+  mfs_free(p->Krow);
+  mfs_free(p);
 }
 
 /* phi, phi', phi'' of particle 0 at the point x: the shape functions of all
@@ -179,7 +180,7 @@ mfs_cf_plan *mfs_cf_plan_alloc(const mfs_cf_spec *spec, mfs_status *status)
     st = MFS_EINVAL;
     goto done;
   }
-  p = calloc(1, sizeof *p);
+  p = mfs_calloc(1, sizeof *p);
   if (!p) {
     st = MFS_ENOMEM;
     goto done;
@@ -193,17 +194,17 @@ mfs_cf_plan *mfs_cf_plan_alloc(const mfs_cf_spec *spec, mfs_status *status)
   p->nm = 2 * (size_t)p->jm + 2;
   p->nrow = 4 * p->jm + 1;
   int nmax = 2 * p->jm + 3;
-  p->xn = malloc(p->nn * sizeof *p->xn);
-  p->xm = malloc(p->nm * sizeof *p->xm);
-  p->tn = malloc(3 * p->nn * sizeof *p->tn);
-  p->tm = malloc(3 * p->nm * sizeof *p->tm);
-  p->Mrow = malloc((size_t)p->nrow * sizeof *p->Mrow);
-  p->Krow = malloc((size_t)p->nrow * sizeof *p->Krow);
-  xp = malloc((size_t)nmax * sizeof *xp);
-  ones = malloc((size_t)nmax * sizeof *ones);
-  out = malloc(3 * (size_t)nmax * sizeof *out);
-  cand = malloc((size_t)nmax * sizeof *cand);
-  idx = malloc((size_t)nmax * sizeof *idx);
+  p->xn = mfs_malloc(p->nn * sizeof *p->xn);
+  p->xm = mfs_malloc(p->nm * sizeof *p->xm);
+  p->tn = mfs_malloc(3 * p->nn * sizeof *p->tn);
+  p->tm = mfs_malloc(3 * p->nm * sizeof *p->tm);
+  p->Mrow = mfs_malloc((size_t)p->nrow * sizeof *p->Mrow);
+  p->Krow = mfs_malloc((size_t)p->nrow * sizeof *p->Krow);
+  xp = mfs_malloc((size_t)nmax * sizeof *xp);
+  ones = mfs_malloc((size_t)nmax * sizeof *ones);
+  out = mfs_malloc(3 * (size_t)nmax * sizeof *out);
+  cand = mfs_malloc((size_t)nmax * sizeof *cand);
+  idx = mfs_malloc((size_t)nmax * sizeof *idx);
   if (!p->xn || !p->xm || !p->tn || !p->tm || !p->Mrow || !p->Krow || !xp || !ones || !out ||
       !cand || !idx) {
     st = MFS_ENOMEM;
@@ -230,11 +231,11 @@ mfs_cf_plan *mfs_cf_plan_alloc(const mfs_cf_spec *spec, mfs_status *status)
     build_ls_rows(p);
 done:
   mfs_eval_free(&ev);
-  free(xp);
-  free(ones);
-  free(out);
-  free(cand);
-  free(idx);
+  mfs_free(xp);
+  mfs_free(ones);
+  mfs_free(out);
+  mfs_free(cand);
+  mfs_free(idx);
   if (st != MFS_OK) {
     mfs_cf_plan_free(p);
     p = NULL;

@@ -1,4 +1,5 @@
 #include "mfs_dispersion.h"
+#include "mfs_alloc.h"
 
 #include <complex.h>
 #undef I /* particle indices are called I here */
@@ -55,8 +56,8 @@ void mfs_disp_plan_free(mfs_disp_plan *pl)
 {
   if (!pl)
     return;
-  free(pl->t);
-  free(pl);
+  mfs_free(pl->t);
+  mfs_free(pl);
 }
 
 int mfs_disp_branches(const mfs_disp_plan *pl)
@@ -83,7 +84,7 @@ static disp_term *push_term(mfs_disp_plan *dp, size_t *cap)
 {
   if (dp->nterm == *cap) {
     size_t ncap = 2 * *cap + 64;
-    disp_term *t = realloc(dp->t, ncap * sizeof *t);
+    disp_term *t = mfs_realloc(dp->t, ncap * sizeof *t);
     if (!t)
       return NULL;
     dp->t = t;
@@ -266,7 +267,7 @@ mfs_disp_plan *mfs_disp_plan_alloc(const mfs_disp_spec *s, mfs_status *status)
   if (mfs_disc_check(&d, NULL) != MFS_OK || !mfs_disc_infinite(&d))
     goto done;
   st = MFS_ENOMEM;
-  dp = calloc(1, sizeof *dp);
+  dp = mfs_calloc(1, sizeof *dp);
   if (!dp)
     goto done;
   dp->spec = *s;
@@ -678,8 +679,8 @@ mfs_disp_sample *mfs_disp_sample_alloc(const mfs_disp_plan *pl, size_t nk, const
   if (!pl || !pl->plane || !k || nk == 0)
     goto done;
   st = MFS_ENOMEM;
-  s = calloc(1, sizeof *s);
-  if (!s || !(s->s = malloc(nk * sizeof *s->s)))
+  s = mfs_calloc(1, sizeof *s);
+  if (!s || !(s->s = mfs_malloc(nk * sizeof *s->s)))
     goto done;
   s->pl = pl;
   s->nk = nk;
@@ -700,8 +701,8 @@ void mfs_disp_sample_free(mfs_disp_sample *s)
 {
   if (!s)
     return;
-  free(s->s);
-  free(s);
+  mfs_free(s->s);
+  mfs_free(s);
 }
 
 mfs_status mfs_disp_sample_omega2(const mfs_disp_sample *s, size_t i, const mfs_plane_state *st,

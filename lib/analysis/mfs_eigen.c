@@ -1,4 +1,5 @@
 #include "mfs_eigen.h"
+#include "mfs_alloc.h"
 
 #include <lapacke.h>
 #include <math.h>
@@ -287,12 +288,12 @@ static int arpack_run(arpack_job *j, mfs_eig_info *info)
   int n = j->n, nev = j->nev, ncv = j->ncv, ldv = n, lworkl = ncv * (ncv + 8);
   int ido = 0, ainfo = 1, iparam[11] = {0}, ipntr[14] = {0};
   mfs_status st = MFS_ENOMEM;
-  double *resid = malloc((size_t)n * sizeof *resid);
-  double *v = malloc((size_t)n * (size_t)ncv * sizeof *v);
-  double *workd = malloc(3 * (size_t)n * sizeof *workd);
-  double *workl = malloc((size_t)lworkl * sizeof *workl);
-  double *dd = malloc((size_t)ncv * 2 * sizeof *dd);
-  int *select = malloc((size_t)ncv * sizeof *select);
+  double *resid = mfs_malloc((size_t)n * sizeof *resid);
+  double *v = mfs_malloc((size_t)n * (size_t)ncv * sizeof *v);
+  double *workd = mfs_malloc(3 * (size_t)n * sizeof *workd);
+  double *workl = mfs_malloc((size_t)lworkl * sizeof *workl);
+  double *dd = mfs_malloc((size_t)ncv * 2 * sizeof *dd);
+  int *select = mfs_malloc((size_t)ncv * sizeof *select);
   if (!resid || !v || !workd || !workl || !dd || !select)
     goto done;
   memcpy(resid, j->start, (size_t)n * sizeof *resid);
@@ -382,12 +383,12 @@ static int arpack_run(arpack_job *j, mfs_eig_info *info)
   }
   st = MFS_OK;
 done:
-  free(resid);
-  free(v);
-  free(workd);
-  free(workl);
-  free(dd);
-  free(select);
+  mfs_free(resid);
+  mfs_free(v);
+  mfs_free(workd);
+  mfs_free(workl);
+  mfs_free(dd);
+  mfs_free(select);
   return st;
 }
 
@@ -417,10 +418,10 @@ typedef struct {
 
 static void sym_free(sym_csr *A)
 {
-  free(A->ptr);
-  free(A->idx);
-  free(A->val);
-  free(A->diag);
+  mfs_free(A->ptr);
+  mfs_free(A->idx);
+  mfs_free(A->val);
+  mfs_free(A->diag);
   memset(A, 0, sizeof *A);
 }
 
@@ -432,10 +433,10 @@ static int sym_from(const mfs_csr *K, const double *s, sym_csr *A)
     for (size_t e = K->ptr[i]; e < K->ptr[i + 1]; e++)
       nnz += (size_t)K->idx[e] > i;
   A->n = n;
-  A->ptr = malloc((n + 1) * sizeof *A->ptr);
-  A->idx = malloc((nnz ? nnz : 1) * sizeof *A->idx);
-  A->val = malloc((nnz ? nnz : 1) * sizeof *A->val);
-  A->diag = calloc(n ? n : 1, sizeof *A->diag);
+  A->ptr = mfs_malloc((n + 1) * sizeof *A->ptr);
+  A->idx = mfs_malloc((nnz ? nnz : 1) * sizeof *A->idx);
+  A->val = mfs_malloc((nnz ? nnz : 1) * sizeof *A->val);
+  A->diag = mfs_calloc(n ? n : 1, sizeof *A->diag);
   if (!A->ptr || !A->idx || !A->val || !A->diag) {
     sym_free(A);
     return MFS_ENOMEM;
@@ -543,10 +544,10 @@ mfs_status mfs_eig_max(const mfs_pencil *P, const mfs_eig_opts *opts, double *la
   max_ctx c = {P, {0}, NULL, NULL, &ch};
   double *start = NULL, *z = NULL, *w2 = NULL, d[1];
   st = MFS_ENOMEM;
-  c.t = malloc(n * sizeof *c.t);
-  start = malloc(n * sizeof *start);
-  z = malloc(n * sizeof *z);
-  w2 = malloc(n * sizeof *w2);
+  c.t = mfs_malloc(n * sizeof *c.t);
+  start = mfs_malloc(n * sizeof *start);
+  z = mfs_malloc(n * sizeof *z);
+  w2 = mfs_malloc(n * sizeof *w2);
   if (!c.t || !start || !z || !w2)
     goto done;
   start_vector(n, start);
@@ -562,7 +563,7 @@ mfs_status mfs_eig_max(const mfs_pencil *P, const mfs_eig_opts *opts, double *la
                   .d = d,
                   .z = z};
   if (P->m) {
-    c.s = malloc(n * sizeof *c.s);
+    c.s = mfs_malloc(n * sizeof *c.s);
     if (!c.s)
       goto done;
     for (size_t i = 0; i < n; i++)
@@ -600,11 +601,11 @@ mfs_status mfs_eig_max(const mfs_pencil *P, const mfs_eig_opts *opts, double *la
 done:
   chol_free(&ch);
   sym_free(&c.A);
-  free(c.s);
-  free(c.t);
-  free(start);
-  free(z);
-  free(w2);
+  mfs_free(c.s);
+  mfs_free(c.t);
+  mfs_free(start);
+  mfs_free(z);
+  mfs_free(w2);
   return st;
 }
 
@@ -699,12 +700,12 @@ mfs_status mfs_eig_zero_modes(const mfs_pencil *P, double lambda_max, const mfs_
   double *Z = NULL, *MZ = NULL, *start = NULL, *d = NULL, *zv = NULL, *w1 = NULL, *w2 = NULL;
   si_ctx c = {P, &ch, 0, NULL, NULL, NULL};
   st = MFS_ENOMEM;
-  Z = malloc(cap * n * sizeof *Z);
-  MZ = malloc(cap * n * sizeof *MZ);
-  start = malloc(n * sizeof *start);
-  c.b = malloc(n * sizeof *c.b);
-  w1 = malloc(n * sizeof *w1);
-  w2 = malloc(n * sizeof *w2);
+  Z = mfs_malloc(cap * n * sizeof *Z);
+  MZ = mfs_malloc(cap * n * sizeof *MZ);
+  start = mfs_malloc(n * sizeof *start);
+  c.b = mfs_malloc(n * sizeof *c.b);
+  w1 = mfs_malloc(n * sizeof *w1);
+  w2 = mfs_malloc(n * sizeof *w2);
   if (!Z || !MZ || !start || !c.b || !w1 || !w2)
     goto done;
   c.Z = Z;
@@ -725,10 +726,10 @@ mfs_status mfs_eig_zero_modes(const mfs_pencil *P, double lambda_max, const mfs_
     int ncv = default_ncv(opts, nev, n);
     if (ncv <= nev)
       ncv = nev + 1;
-    free(d);
-    free(zv);
-    d = malloc((size_t)nev * sizeof *d);
-    zv = malloc((size_t)nev * n * sizeof *zv);
+    mfs_free(d);
+    mfs_free(zv);
+    d = mfs_malloc((size_t)nev * sizeof *d);
+    zv = mfs_malloc((size_t)nev * n * sizeof *zv);
     st = MFS_ENOMEM;
     if (!d || !zv)
       goto done;
@@ -780,7 +781,7 @@ mfs_status mfs_eig_zero_modes(const mfs_pencil *P, double lambda_max, const mfs_
     info->residual = resmax;
   if (zo->want_modes && c.k > 0) {
     st = MFS_ENOMEM;
-    out->modes = malloc(c.k * n * sizeof *out->modes);
+    out->modes = mfs_malloc(c.k * n * sizeof *out->modes);
     if (!out->modes)
       goto done;
     memcpy(out->modes, Z, c.k * n * sizeof *Z);
@@ -788,14 +789,14 @@ mfs_status mfs_eig_zero_modes(const mfs_pencil *P, double lambda_max, const mfs_
   st = MFS_OK;
 done:
   chol_free(&ch);
-  free(Z);
-  free(MZ);
-  free(start);
-  free(c.b);
-  free(d);
-  free(zv);
-  free(w1);
-  free(w2);
+  mfs_free(Z);
+  mfs_free(MZ);
+  mfs_free(start);
+  mfs_free(c.b);
+  mfs_free(d);
+  mfs_free(zv);
+  mfs_free(w1);
+  mfs_free(w2);
   return st;
 }
 
@@ -803,7 +804,7 @@ mfs_status mfs_eig_is_null(const mfs_pencil *P, const double *r, double lambda_m
                            int *is_null)
 {
   size_t n = P->K->nrow;
-  double *a = malloc(n * sizeof *a), *b = malloc(n * sizeof *b);
+  double *a = mfs_malloc(n * sizeof *a), *b = mfs_malloc(n * sizeof *b);
   mfs_status st = MFS_ENOMEM;
   *is_null = 0;
   if (a && b) {
@@ -812,8 +813,8 @@ mfs_status mfs_eig_is_null(const mfs_pencil *P, const double *r, double lambda_m
     *is_null = norm2(n, a) <= tol * lambda_max * norm2(n, b);
     st = MFS_OK;
   }
-  free(a);
-  free(b);
+  mfs_free(a);
+  mfs_free(b);
   return st;
 }
 
@@ -904,12 +905,12 @@ static int cert_factor(cert_ws *w, double sigma, mfs_certificate *out)
   out->margin = 0.0;
   out->max_row = 0;
   if (out->ok) {
-    long *work = malloc(w->L->n * sizeof *work);
+    long *work = mfs_malloc(w->L->n * sizeof *work);
     if (!work)
       return MFS_ENOMEM;
     int k, wr;
     factor_rows(w->L, &k, &wr, work);
-    free(work);
+    mfs_free(work);
     out->max_row = k;
     out->margin = (double)wr * gamma_ratio((double)k + 1.0) + 5.0 * 0x1.0p-53;
   }
@@ -995,7 +996,7 @@ mfs_status mfs_eig_dense(const mfs_pencil *P, double *w)
   size_t n = P->K->nrow;
   if (n > MFS_EIG_DENSE_MAX)
     return MFS_EINVAL;
-  double *A = calloc(n * n, sizeof *A), *B = calloc(n * n, sizeof *B);
+  double *A = mfs_calloc(n * n, sizeof *A), *B = mfs_calloc(n * n, sizeof *B);
   st = MFS_ENOMEM;
   if (!A || !B)
     goto done;
@@ -1020,7 +1021,7 @@ mfs_status mfs_eig_dense(const mfs_pencil *P, double *w)
   else
     st = info > (lapack_int)n ? MFS_EDOMAIN : MFS_ELAPACK;
 done:
-  free(A);
-  free(B);
+  mfs_free(A);
+  mfs_free(B);
   return st;
 }

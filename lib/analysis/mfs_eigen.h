@@ -111,7 +111,7 @@ typedef struct {
   double tol;       /* threshold relative to lambda_max (e.g. 1e-8) */
   int nev;          /* eigenvalues per run (default 6) */
   int max_modes;    /* cap on the count (default 1024) */
-  int want_modes;   /* keep the modes in out->modes (free with free()) */
+  int want_modes;   /* keep the modes in out->modes (free with mfs_free()) */
 } mfs_zero_opts;
 
 mfs_status mfs_eig_zero_modes(const mfs_pencil *P, double lambda_max, const mfs_zero_opts *zopts,

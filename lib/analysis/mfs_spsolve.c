@@ -1,4 +1,5 @@
 #include "mfs_spsolve.h"
+#include "mfs_alloc.h"
 
 #include <lapacke.h>
 #include <math.h>
@@ -203,8 +204,8 @@ static int cholmod_constrained_fn(const mfs_csr *A, const mfs_csr *C, const doub
   /* Z = M^-1 C^T (n x m), y = M^-1 (b + rho C^T g) */
   Bd = cholmod_l_allocate_dense(n, m ? m : 1, n, CHOLMOD_REAL, &c);
   bt = cholmod_l_allocate_dense(n, 1, n, CHOLMOD_REAL, &c);
-  S = calloc(m * m + 1, sizeof *S);
-  r = malloc((m + 1) * sizeof *r);
+  S = mfs_calloc(m * m + 1, sizeof *S);
+  r = mfs_malloc((m + 1) * sizeof *r);
   if (!Bd || !bt || !S || !r)
     goto done;
   double *B = Bd->x, *bv = bt->x;
@@ -270,8 +271,8 @@ done:
   cholmod_l_free_sparse(&Ct, &c);
   cholmod_l_free_sparse(&Af, &c);
   cholmod_l_finish(&c);
-  free(S);
-  free(r);
+  mfs_free(S);
+  mfs_free(r);
   return st;
 }
 
@@ -293,12 +294,12 @@ static int umfpack_solve_fn(const mfs_csr *A, const double *b, double *x, mfs_sp
   size_t n = A->nrow, nnz = A->ptr[n], maxrow = 0;
   int st = MFS_ENOMEM;
   void *Sym = NULL, *Num = NULL;
-  SuiteSparse_long *Ap = malloc((n + 1) * sizeof *Ap), *Ai = malloc((nnz ? nnz : 1) * sizeof *Ai);
-  double *Ax = malloc((nnz ? nnz : 1) * sizeof *Ax);
+  SuiteSparse_long *Ap = mfs_malloc((n + 1) * sizeof *Ap), *Ai = mfs_malloc((nnz ? nnz : 1) * sizeof *Ai);
+  double *Ax = mfs_malloc((nnz ? nnz : 1) * sizeof *Ax);
   entry *row = NULL;
   for (size_t i = 0; i < n; i++)
     maxrow = A->ptr[i + 1] - A->ptr[i] > maxrow ? A->ptr[i + 1] - A->ptr[i] : maxrow;
-  row = malloc((maxrow ? maxrow : 1) * sizeof *row);
+  row = mfs_malloc((maxrow ? maxrow : 1) * sizeof *row);
   if (!Ap || !Ai || !Ax || !row)
     goto done;
   /* row i of A, sorted, is column i of A^T */
@@ -346,10 +347,10 @@ static int umfpack_solve_fn(const mfs_csr *A, const double *b, double *x, mfs_sp
 done:
   umfpack_dl_free_numeric(&Num);
   umfpack_dl_free_symbolic(&Sym);
-  free(Ap);
-  free(Ai);
-  free(Ax);
-  free(row);
+  mfs_free(Ap);
+  mfs_free(Ai);
+  mfs_free(Ax);
+  mfs_free(row);
   return st;
 }
 
@@ -394,10 +395,10 @@ mfs_status mfs_spsolve(const mfs_spsolve_type *t, const mfs_csr *A, const double
 static mfs_csr *saddle_matrix(const mfs_csr *A, const mfs_csr *C, const mfs_csr *Ct)
 {
   size_t n = A->nrow, m = C->nrow, N = n + m;
-  size_t *cnt = calloc(n + 1, sizeof *cnt);
+  size_t *cnt = mfs_calloc(n + 1, sizeof *cnt);
   mfs_csr *K = cnt ? mfs_csr_alloc(N, N, A->ptr[n] + C->ptr[m] + Ct->ptr[m]) : NULL;
   if (!K) {
-    free(cnt);
+    mfs_free(cnt);
     return NULL;
   }
   for (size_t e = 0; e < Ct->ptr[m]; e++)
@@ -426,7 +427,7 @@ static mfs_csr *saddle_matrix(const mfs_csr *A, const mfs_csr *C, const mfs_csr 
     }
     K->ptr[n + k + 1] = pos;
   }
-  free(cnt);
+  mfs_free(cnt);
   return K;
 }
 
@@ -436,10 +437,10 @@ static double saddle_backward(const mfs_csr *A, const mfs_csr *C, const mfs_csr 
                               const double *b, const double *g, const double *x, const double *l)
 {
   size_t n = A->nrow, m = C->nrow;
-  double *r = calloc(n + m + 1, sizeof *r), *rs = calloc(n + m + 1, sizeof *rs);
+  double *r = mfs_calloc(n + m + 1, sizeof *r), *rs = mfs_calloc(n + m + 1, sizeof *rs);
   if (!r || !rs) {
-    free(r);
-    free(rs);
+    mfs_free(r);
+    mfs_free(rs);
     return NAN;
   }
   double xn = 0.0, bn = 0.0;
@@ -474,12 +475,12 @@ static double saddle_backward(const mfs_csr *A, const mfs_csr *C, const mfs_csr 
     rn = fmax(rn, fabs(r[i]));
     an = fmax(an, rs[i]);
   }
-  free(r);
-  free(rs);
+  mfs_free(r);
+  mfs_free(rs);
   return an * xn + bn > 0.0 ? rn / (an * xn + bn) : 0.0;
 bad:
-  free(r);
-  free(rs);
+  mfs_free(r);
+  mfs_free(rs);
   return NAN;
 }
 
@@ -496,7 +497,7 @@ mfs_status mfs_spsolve_constrained(const mfs_spsolve_type *t, const mfs_csr *A, 
     return MFS_EINVAL;
   size_t n = A->nrow, m = C->nrow;
   mfs_csr *K = NULL;
-  double *rhs = NULL, *sol = malloc((n + m + 1) * sizeof *sol);
+  double *rhs = NULL, *sol = mfs_malloc((n + m + 1) * sizeof *sol);
   int st = MFS_ENOMEM;
   if (!sol)
     goto done;
@@ -508,7 +509,7 @@ mfs_status mfs_spsolve_constrained(const mfs_spsolve_type *t, const mfs_csr *A, 
       goto done;
     st = MFS_ENOMEM;
     K = saddle_matrix(A, C, Ct ? Ct : C);
-    rhs = malloc((n + m + 1) * sizeof *rhs);
+    rhs = mfs_malloc((n + m + 1) * sizeof *rhs);
     if (!K || !rhs)
       goto done;
     memcpy(rhs, b, n * sizeof *b);
@@ -527,7 +528,7 @@ mfs_status mfs_spsolve_constrained(const mfs_spsolve_type *t, const mfs_csr *A, 
     memcpy(lambda, sol + n, m * sizeof *lambda);
 done:
   mfs_csr_free(K);
-  free(rhs);
-  free(sol);
+  mfs_free(rhs);
+  mfs_free(sol);
   return (mfs_status)st;
 }

@@ -1,4 +1,5 @@
 #include "mfs_static.h"
+#include "mfs_alloc.h"
 
 #include <math.h>
 #include <stdlib.h>
@@ -177,19 +178,19 @@ void mfs_static_free(mfs_static *m)
   if (m->eq != m->gq)
     mfs_quad_free(m->eq);
   mfs_quad_free(m->gq);
-  free(m->evol);
-  free(m->pinned);
+  mfs_free(m->evol);
+  mfs_free(m->pinned);
   mfs_particles_free(m->p);
   mfs_grid_free(m->grid);
   mfs_csr_free(m->K);
   mfs_csr_free(m->Ctr);
   mfs_csr_free(m->Cte);
-  free(m->seg);
-  free(m->bp);
-  free(m->f);
-  free(m->g);
-  free(m->u);
-  free(m);
+  mfs_free(m->seg);
+  mfs_free(m->bp);
+  mfs_free(m->f);
+  mfs_free(m->g);
+  mfs_free(m->u);
+  mfs_free(m);
 }
 
 /* The boundary quadrature points: the trapezoid rule at the nodes (a point
@@ -199,7 +200,7 @@ static int boundary_points(mfs_static *m)
 {
   int ng = m->qt->gauss_n;
   size_t per = ng > 0 ? (size_t)ng : 2;
-  m->bp = malloc((m->nseg * per + 1) * sizeof *m->bp);
+  m->bp = mfs_malloc((m->nseg * per + 1) * sizeof *m->bp);
   if (!m->bp)
     return MFS_ENOMEM;
   double tt[10], tw[10];
@@ -231,7 +232,7 @@ mfs_static *mfs_static_alloc(const mfs_static_spec *s, mfs_status *status, const
   if (st != MFS_OK)
     goto fail;
   st = MFS_ENOMEM;
-  m = calloc(1, sizeof *m);
+  m = mfs_calloc(1, sizeof *m);
   if (!m)
     goto fail;
   m->s = *s;
@@ -262,7 +263,7 @@ mfs_static *mfs_static_alloc(const mfs_static_spec *s, mfs_status *status, const
     m->eq = m->gq;
   st = MFS_ENOMEM;
   if (!m->evol) {
-    m->evol = malloc(m->p->n * sizeof *m->evol);
+    m->evol = mfs_malloc(m->p->n * sizeof *m->evol);
     if (!m->evol)
       goto fail;
     memcpy(m->evol, m->p->vol, m->p->n * sizeof *m->evol);
@@ -304,9 +305,9 @@ static void pev_free(pev *e)
 {
   mfs_eval_free(&e->tr);
   mfs_eval_free(&e->te);
-  free(e->idx);
-  free(e->idx2);
-  free(e->otr); /* one block for all the tables */
+  mfs_free(e->idx);
+  mfs_free(e->idx2);
+  mfs_free(e->otr); /* one block for all the tables */
   memset(e, 0, sizeof *e);
 }
 
@@ -318,17 +319,17 @@ static int pev_reserve(pev *e, size_t cap)
   if (mfs_eval_reserve(&e->tr, cap) != MFS_OK ||
       (e->has_test && mfs_eval_reserve(&e->te, cap) != MFS_OK))
     return MFS_ENOMEM;
-  int *i1 = malloc(cap * sizeof *i1), *i2 = malloc(cap * sizeof *i2);
-  double *d = malloc(cap * 16 * sizeof *d); /* otr, ote (3 each), vtr, vte, Btr, Bte (4 each) */
+  int *i1 = mfs_malloc(cap * sizeof *i1), *i2 = mfs_malloc(cap * sizeof *i2);
+  double *d = mfs_malloc(cap * 16 * sizeof *d); /* otr, ote (3 each), vtr, vte, Btr, Bte (4 each) */
   if (!i1 || !i2 || !d) {
-    free(i1);
-    free(i2);
-    free(d);
+    mfs_free(i1);
+    mfs_free(i2);
+    mfs_free(d);
     return MFS_ENOMEM;
   }
-  free(e->idx);
-  free(e->idx2);
-  free(e->otr);
+  mfs_free(e->idx);
+  mfs_free(e->idx2);
+  mfs_free(e->otr);
   e->idx = i1;
   e->idx2 = i2;
   e->otr = d;
@@ -500,13 +501,13 @@ static int coo_add(coo *t, int r, int c, double v)
     return MFS_OK;
   if (t->n == t->cap) {
     size_t cap = t->cap ? 2 * t->cap : 1024;
-    int *r2 = realloc(t->row, cap * sizeof *r2);
+    int *r2 = mfs_realloc(t->row, cap * sizeof *r2);
     if (r2)
       t->row = r2;
-    int *c2 = realloc(t->col, cap * sizeof *c2);
+    int *c2 = mfs_realloc(t->col, cap * sizeof *c2);
     if (c2)
       t->col = c2;
-    double *v2 = realloc(t->val, cap * sizeof *v2);
+    double *v2 = mfs_realloc(t->val, cap * sizeof *v2);
     if (v2)
       t->val = v2;
     if (!r2 || !c2 || !v2)
@@ -521,9 +522,9 @@ static int coo_add(coo *t, int r, int c, double v)
 
 static void coo_free(coo *t)
 {
-  free(t->row);
-  free(t->col);
-  free(t->val);
+  mfs_free(t->row);
+  mfs_free(t->col);
+  mfs_free(t->val);
   memset(t, 0, sizeof *t);
 }
 
@@ -531,8 +532,8 @@ static void coo_free(coo *t)
 static mfs_csr *coo_csr(const coo *t, size_t nrow, size_t ncol)
 {
   mfs_csr *A = mfs_csr_alloc(nrow, ncol, t->n);
-  size_t *next = malloc((nrow + 1) * sizeof *next);
-  int *mark = malloc((ncol ? ncol : 1) * sizeof *mark);
+  size_t *next = mfs_malloc((nrow + 1) * sizeof *next);
+  int *mark = mfs_malloc((ncol ? ncol : 1) * sizeof *mark);
   if (!A || !next || !mark) {
     mfs_csr_free(A);
     A = NULL;
@@ -581,8 +582,8 @@ static mfs_csr *coo_csr(const coo *t, size_t nrow, size_t ncol)
   }
   A->ptr[nrow] = out;
 done:
-  free(next);
-  free(mark);
+  mfs_free(next);
+  mfs_free(mark);
   return A;
 }
 
@@ -600,13 +601,13 @@ static int block_unions(const mfs_static *m, const mfs_quad *q, size_t bs, mfs_n
   int st = MFS_ENOMEM;
   cursor c;
   cursor_init(&c, q, bs);
-  mfs_nlist *u = calloc(1, sizeof *u);
-  int *mark = malloc(n * sizeof *mark);
+  mfs_nlist *u = mfs_calloc(1, sizeof *u);
+  int *mark = mfs_malloc(n * sizeof *mark);
   if (!u || !mark)
     goto done;
   u->nq = c.nblock;
-  u->ptr = calloc(c.nblock + 1, sizeof *u->ptr);
-  u->idx = malloc(cap * sizeof *u->idx);
+  u->ptr = mfs_calloc(c.nblock + 1, sizeof *u->ptr);
+  u->idx = mfs_malloc(cap * sizeof *u->idx);
   if (!u->ptr || !u->idx)
     goto done;
   for (size_t i = 0; i < n; i++)
@@ -626,7 +627,7 @@ static int block_unions(const mfs_static *m, const mfs_quad *q, size_t bs, mfs_n
           mark[J] = (int)b;
           if (nnz == cap) {
             cap *= 2;
-            int *t = realloc(u->idx, cap * sizeof *t);
+            int *t = mfs_realloc(u->idx, cap * sizeof *t);
             if (!t)
               goto done;
             u->idx = t;
@@ -645,7 +646,7 @@ static int block_unions(const mfs_static *m, const mfs_quad *q, size_t bs, mfs_n
   st = MFS_OK;
 done:
   cursor_free(&c);
-  free(mark);
+  mfs_free(mark);
   if (st != MFS_OK) {
     mfs_nlist_free(u);
     u = NULL;
@@ -663,8 +664,8 @@ static int stiffness_pattern(const mfs_static *m, const mfs_nlist *U, mfs_csr **
   size_t n = m->p->n;
   int st = MFS_ENOMEM;
   mfs_nlist *T = mfs_nlist_transpose(U, n, (mfs_status *)&st);
-  size_t *nptr = calloc(n + 1, sizeof *nptr), cap = 1 << 16, nnz = 0;
-  int *nidx = malloc(cap * sizeof *nidx), *mark = malloc(n * sizeof *mark);
+  size_t *nptr = mfs_calloc(n + 1, sizeof *nptr), cap = 1 << 16, nnz = 0;
+  int *nidx = mfs_malloc(cap * sizeof *nidx), *mark = mfs_malloc(n * sizeof *mark);
   mfs_csr *K = NULL;
   if (!T || !nptr || !nidx || !mark)
     goto done;
@@ -680,7 +681,7 @@ static int stiffness_pattern(const mfs_static *m, const mfs_nlist *U, mfs_csr **
         mark[J] = (int)I;
         if (nnz == cap) {
           cap *= 2;
-          int *t = realloc(nidx, cap * sizeof *t);
+          int *t = mfs_realloc(nidx, cap * sizeof *t);
           if (!t)
             goto done;
           nidx = t;
@@ -710,10 +711,10 @@ static int stiffness_pattern(const mfs_static *m, const mfs_nlist *U, mfs_csr **
   st = MFS_OK;
 done:
   mfs_nlist_free(T);
-  free(mark);
+  mfs_free(mark);
   if (st != MFS_OK) {
-    free(nptr);
-    free(nidx);
+    mfs_free(nptr);
+    mfs_free(nidx);
     mfs_csr_free(K);
     nptr = NULL;
     nidx = NULL;
@@ -797,10 +798,10 @@ static int assemble_stiffness(mfs_static *m, mfs_static_where *where)
   for (size_t b = 0; b < U->nq; b++)
     maxu = U->ptr[b + 1] - U->ptr[b] > maxu ? U->ptr[b + 1] - U->ptr[b] : maxu;
   st = MFS_ENOMEM;
-  loc = malloc(n * sizeof *loc);
-  rowmark = malloc(n * sizeof *rowmark);
-  Kl = malloc((4 * maxu * maxu + 1) * sizeof *Kl);
-  DB = malloc((6 * maxnn + 6) * sizeof *DB);
+  loc = mfs_malloc(n * sizeof *loc);
+  rowmark = mfs_malloc(n * sizeof *rowmark);
+  Kl = mfs_malloc((4 * maxu * maxu + 1) * sizeof *Kl);
+  DB = mfs_malloc((6 * maxnn + 6) * sizeof *DB);
   if (!loc || !rowmark || !Kl || !DB)
     goto done;
   int r = 0;
@@ -844,19 +845,19 @@ done:
   cursor_free(&c);
   pev_free(&e);
   mfs_nlist_free(U);
-  free(nptr);
-  free(nidx);
-  free(loc);
-  free(rowmark);
-  free(Kl);
-  free(DB);
+  mfs_free(nptr);
+  mfs_free(nidx);
+  mfs_free(loc);
+  mfs_free(rowmark);
+  mfs_free(Kl);
+  mfs_free(DB);
   return st;
 }
 
 /* Neighbour lists of the boundary points. */
 static mfs_nlist *boundary_lists(const mfs_static *m, mfs_status *st)
 {
-  double *x = malloc((2 * m->nbp + 2) * sizeof *x);
+  double *x = mfs_malloc((2 * m->nbp + 2) * sizeof *x);
   if (!x) {
     *st = MFS_ENOMEM;
     return NULL;
@@ -866,7 +867,7 @@ static mfs_nlist *boundary_lists(const mfs_static *m, mfs_status *st)
     x[2 * k + 1] = m->bp[k].x[1];
   }
   mfs_nlist *nl = mfs_nlist_build(m->grid, m->nbp, x, m->a, st);
-  free(x);
+  mfs_free(x);
   return nl;
 }
 
@@ -889,8 +890,8 @@ static int assemble_boundary(mfs_static *m, mfs_static_where *where)
   if (st != MFS_OK)
     goto done;
   st = MFS_ENOMEM;
-  m->f = calloc(2 * n, sizeof *m->f);
-  mult = malloc(2 * n * sizeof *mult);
+  m->f = mfs_calloc(2 * n, sizeof *m->f);
+  mult = mfs_malloc(2 * n * sizeof *mult);
   if (!m->f || !mult)
     goto done;
   for (size_t i = 0; i < 2 * n; i++)
@@ -908,7 +909,7 @@ static int assemble_boundary(mfs_static *m, mfs_static_where *where)
     if (m->pinned[I])
       for (int c = 0; c < 2; c++)
         mult[2 * I + c] = (int)m->m++;
-  gsum = calloc(m->m + 1, sizeof *gsum);
+  gsum = mfs_calloc(m->m + 1, sizeof *gsum);
   if (!gsum)
     goto done;
   /* scale of the constraint rows: E/h makes C_IJ ~ E like K */
@@ -985,8 +986,8 @@ done:
   mfs_nlist_free(nl);
   coo_free(&ctr);
   coo_free(&cte);
-  free(mult);
-  free(gsum);
+  mfs_free(mult);
+  mfs_free(gsum);
   return st;
 }
 
@@ -997,8 +998,8 @@ mfs_status mfs_static_assemble(mfs_static *m, mfs_static_where *where)
   mfs_csr_free(m->K);
   mfs_csr_free(m->Ctr);
   mfs_csr_free(m->Cte);
-  free(m->f);
-  free(m->g);
+  mfs_free(m->f);
+  mfs_free(m->g);
   m->K = m->Ctr = m->Cte = NULL;
   m->f = m->g = NULL;
   m->assembled = m->solved = 0;
@@ -1016,8 +1017,8 @@ static int solve_eliminated(mfs_static *m)
 {
   size_t nd = 2 * m->p->n;
   int st = MFS_ENOMEM;
-  int *map = malloc(nd * sizeof *map);
-  double *up = calloc(nd, sizeof *up), *rhs = NULL, *x = NULL;
+  int *map = mfs_malloc(nd * sizeof *map);
+  double *up = mfs_calloc(nd, sizeof *up), *rhs = NULL, *x = NULL;
   mfs_csr *A = NULL;
   if (!map || !up)
     goto done;
@@ -1038,8 +1039,8 @@ static int solve_eliminated(mfs_static *m)
       for (size_t e = m->K->ptr[i]; e < m->K->ptr[i + 1]; e++)
         nnz += map[m->K->idx[e]] >= 0;
   A = mfs_csr_alloc(nf, nf, nnz);
-  rhs = malloc((nf + 1) * sizeof *rhs);
-  x = malloc((nf + 1) * sizeof *x);
+  rhs = mfs_malloc((nf + 1) * sizeof *rhs);
+  x = mfs_malloc((nf + 1) * sizeof *x);
   if (!A || !rhs || !x)
     goto done;
   size_t pos = 0;
@@ -1070,10 +1071,10 @@ static int solve_eliminated(mfs_static *m)
   for (size_t i = 0; i < nd; i++)
     m->u[i] = map[i] >= 0 ? x[map[i]] : up[i];
 done:
-  free(map);
-  free(up);
-  free(rhs);
-  free(x);
+  mfs_free(map);
+  mfs_free(up);
+  mfs_free(rhs);
+  mfs_free(x);
   mfs_csr_free(A);
   return st;
 }
@@ -1091,8 +1092,8 @@ mfs_status mfs_static_solve(mfs_static *m)
   if (!m || !m->assembled)
     return MFS_EINVAL;
   m->solved = 0;
-  free(m->u);
-  m->u = calloc(2 * m->p->n, sizeof *m->u);
+  mfs_free(m->u);
+  m->u = mfs_calloc(2 * m->p->n, sizeof *m->u);
   if (!m->u)
     return MFS_ENOMEM;
   int st = m->eliminated ? solve_eliminated(m) : solve_kkt(m);
@@ -1260,14 +1261,14 @@ static void acc_norms(void *ctx, size_t Q, const double *x, double w, const doub
 static mfs_quad *node_quad(const mfs_static *m, int all, mfs_status *st)
 {
   size_t n = m->p->n;
-  mfs_quad *q = calloc(1, sizeof *q);
+  mfs_quad *q = mfs_calloc(1, sizeof *q);
   *st = MFS_ENOMEM;
   if (!q)
     return NULL;
   q->dim = 2;
-  q->x = malloc(2 * n * sizeof *q->x);
-  q->w = malloc(n * sizeof *q->w);
-  q->node = malloc(n * sizeof *q->node);
+  q->x = mfs_malloc(2 * n * sizeof *q->x);
+  q->w = mfs_malloc(n * sizeof *q->w);
+  q->node = mfs_malloc(n * sizeof *q->node);
   if (!q->x || !q->w || !q->node) {
     mfs_quad_free(q);
     return NULL;
@@ -1355,7 +1356,7 @@ mfs_status mfs_static_check_consistency(mfs_static *m, mfs_static_consistency *o
     return MFS_EINVAL;
   size_t n = m->p->n;
   int st = MFS_ENOMEM;
-  double *ul = malloc(2 * n * sizeof *ul), *R = calloc(6 * n, sizeof *R);
+  double *ul = mfs_malloc(2 * n * sizeof *ul), *R = mfs_calloc(6 * n, sizeof *R);
   mfs_nlist *bl = NULL;
   pev e;
   memset(&e, 0, sizeof e);
@@ -1469,8 +1470,8 @@ done:
   cursor_free(&c);
   pev_free(&e);
   mfs_nlist_free(bl);
-  free(ul);
-  free(R);
+  mfs_free(ul);
+  mfs_free(R);
   return (mfs_status)st;
 }
 

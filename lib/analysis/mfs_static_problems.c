@@ -8,6 +8,7 @@
 #include <string.h>
 
 #include "mfs_static_impl.h"
+#include "mfs_alloc.h"
 
 /* Timoshenko-Goodier cantilever (eqs 120-125); plane strain: E -> E/(1-nu^2),
  * nu -> nu/(1-nu) in the displacements (the stresses are the same). */
@@ -124,7 +125,7 @@ int mfs_static_impl_add_segment(mfs_static *m, int a, int b, int kind, unsigned 
 {
   if (m->nseg == m->seg_cap) {
     size_t cap = m->seg_cap ? 2 * m->seg_cap : 64;
-    segment *t = realloc(m->seg, cap * sizeof *t);
+    segment *t = mfs_realloc(m->seg, cap * sizeof *t);
     if (!t)
       return MFS_ENOMEM;
     m->seg = t;
@@ -194,16 +195,16 @@ static int beam_build(mfs_static *m)
     return MFS_OK;
   /* the ghosts: parameters prescribed at x <= 0; errors over the cells and
    * volumes in [0, L] (cells are in rows of nx - 1, the first G columns ghost) */
-  m->pinned = calloc(p->n, 1);
-  m->evol = calloc(p->n, sizeof *m->evol);
-  m->eq = calloc(1, sizeof *m->eq);
+  m->pinned = mfs_calloc(p->n, 1);
+  m->evol = mfs_calloc(p->n, sizeof *m->evol);
+  m->eq = mfs_calloc(1, sizeof *m->eq);
   size_t ne = (size_t)(ny - 1) * (size_t)(s->nx - 1) * 25;
   if (!m->pinned || !m->evol || !m->eq)
     return MFS_ENOMEM;
   m->eq->dim = 2;
-  m->eq->x = malloc(2 * ne * sizeof *m->eq->x);
-  m->eq->w = malloc(ne * sizeof *m->eq->w);
-  m->eq->node = malloc(ne * sizeof *m->eq->node);
+  m->eq->x = mfs_malloc(2 * ne * sizeof *m->eq->x);
+  m->eq->w = mfs_malloc(ne * sizeof *m->eq->w);
+  m->eq->node = mfs_malloc(ne * sizeof *m->eq->node);
   if (!m->eq->x || !m->eq->w || !m->eq->node)
     return MFS_ENOMEM;
   for (size_t c = 0; c < p->ncell; c++) {
@@ -266,14 +267,14 @@ static mfs_quad *plate_gauss(const mfs_static_spec *s, int nr, int mb, int ng, m
   *st = MFS_ENOMEM;
   if (mfs_static_impl_gauss01(ng, tt, tw) != MFS_OK)
     return NULL;
-  mfs_quad *q = calloc(1, sizeof *q);
+  mfs_quad *q = mfs_calloc(1, sizeof *q);
   size_t n = (size_t)nr * 2 * mb * ng * ng;
   if (!q)
     return NULL;
   q->dim = 2;
-  q->x = malloc(2 * n * sizeof *q->x);
-  q->w = malloc(n * sizeof *q->w);
-  q->node = malloc(n * sizeof *q->node);
+  q->x = mfs_malloc(2 * n * sizeof *q->x);
+  q->w = mfs_malloc(n * sizeof *q->w);
+  q->node = mfs_malloc(n * sizeof *q->node);
   if (!q->x || !q->w || !q->node) {
     mfs_quad_free(q);
     return NULL;
@@ -323,7 +324,7 @@ static int plate_build(mfs_static *m)
   int na = (int)ceil(M_PI / 2.0 * a / h - 1e-9);
   size_t cap = (size_t)(N + 1) * (N + 1) + (size_t)na + 1;
   int st = MFS_ENOMEM;
-  mfs_particles *p = calloc(1, sizeof *p);
+  mfs_particles *p = mfs_calloc(1, sizeof *p);
   keyed *sel = NULL;
   mfs_grid *g = NULL;
   mfs_nlist *nl = NULL;
@@ -332,11 +333,11 @@ static int plate_build(mfs_static *m)
     return MFS_ENOMEM;
   p->dim = 2;
   p->lattice = MFS_LATTICE_SQUARE;
-  p->x = malloc(2 * cap * sizeof *p->x);
-  p->vol = calloc(cap, sizeof *p->vol);
-  p->flags = calloc(cap, 1);
-  p->ij = calloc(2 * cap, sizeof *p->ij);
-  sel = malloc(cap * sizeof *sel);
+  p->x = mfs_malloc(2 * cap * sizeof *p->x);
+  p->vol = mfs_calloc(cap, sizeof *p->vol);
+  p->flags = mfs_calloc(cap, 1);
+  p->ij = mfs_calloc(2 * cap, sizeof *p->ij);
+  sel = mfs_malloc(cap * sizeof *sel);
   if (!p->x || !p->vol || !p->flags || !p->ij || !sel)
     goto done;
   /* the arc: theta from 0 to pi/2 */
@@ -426,7 +427,7 @@ static int plate_build(mfs_static *m)
   for (int k = na; k > 0 && st == MFS_OK; k--)
     st = mfs_static_impl_add_segment(m, k, k - 1, SEG_FREE, 0u);
 done:
-  free(sel);
+  mfs_free(sel);
   mfs_nlist_free(nl);
   mfs_grid_free(g);
   return st;

@@ -1,4 +1,5 @@
 #include "mfs_csr.h"
+#include "mfs_alloc.h"
 
 #include <math.h>
 #include <stdlib.h>
@@ -7,14 +8,14 @@
 
 mfs_csr *mfs_csr_alloc(size_t nrow, size_t ncol, size_t nnz)
 {
-  mfs_csr *A = calloc(1, sizeof *A);
+  mfs_csr *A = mfs_calloc(1, sizeof *A);
   if (!A)
     return NULL;
   A->nrow = nrow;
   A->ncol = ncol;
-  A->ptr = calloc(nrow + 1, sizeof *A->ptr);
-  A->idx = malloc((nnz ? nnz : 1) * sizeof *A->idx);
-  A->val = malloc((nnz ? nnz : 1) * sizeof *A->val);
+  A->ptr = mfs_calloc(nrow + 1, sizeof *A->ptr);
+  A->idx = mfs_malloc((nnz ? nnz : 1) * sizeof *A->idx);
+  A->val = mfs_malloc((nnz ? nnz : 1) * sizeof *A->val);
   if (!A->ptr || !A->idx || !A->val) {
     mfs_csr_free(A);
     return NULL;
@@ -26,10 +27,10 @@ void mfs_csr_free(mfs_csr *A)
 {
   if (!A)
     return;
-  free(A->ptr);
-  free(A->idx);
-  free(A->val);
-  free(A);
+  mfs_free(A->ptr);
+  mfs_free(A->idx);
+  mfs_free(A->val);
+  mfs_free(A);
 }
 
 void mfs_csr_matvec(const mfs_csr *A, const double *x, double *y)

@@ -1,4 +1,5 @@
 #include "mfs_delaunay.h"
+#include "mfs_alloc.h"
 
 #include <libqhull_r/qhull_ra.h>
 #include <math.h>
@@ -26,7 +27,7 @@ mfs_status mfs_delaunay_2d(size_t n, const double *x, size_t *ntri, int **tri)
   FILE *err = open_memstream(&msg, &msglen);
   if (!err)
     return MFS_ENOMEM;
-  coordT *pts = malloc(2 * n * sizeof *pts);
+  coordT *pts = mfs_malloc(2 * n * sizeof *pts);
   int *t = NULL;
   mfs_status st = MFS_ENOMEM;
   qhT qh_qh, *qh = &qh_qh;
@@ -47,7 +48,7 @@ mfs_status mfs_delaunay_2d(size_t n, const double *x, size_t *ntri, int **tri)
   FORALLfacets
     nf += !facet->upperdelaunay;
   st = MFS_ENOMEM;
-  t = malloc((nf ? nf : 1) * 3 * sizeof *t);
+  t = mfs_malloc((nf ? nf : 1) * 3 * sizeof *t);
   if (!t)
     goto done;
   size_t k = 0;
@@ -93,12 +94,12 @@ done:
     qh_memfreeshort(qh, &curlong, &totlong);
   }
   fclose(err);
-  free(msg);
-  free(pts);
+  mfs_free(msg);
+  mfs_free(pts);
   if (st == MFS_OK) {
     *tri = t;
   } else {
-    free(t);
+    mfs_free(t);
     *ntri = 0;
   }
   return st;
@@ -169,11 +170,11 @@ mfs_status mfs_convex_hull_2d(size_t n, const double *x, unsigned char *hull)
     memset(hull, 1, n);
     return MFS_OK;
   }
-  hull_pt *p = malloc(n * sizeof *p);
-  size_t *chain = malloc(n * sizeof *chain);
+  hull_pt *p = mfs_malloc(n * sizeof *p);
+  size_t *chain = mfs_malloc(n * sizeof *chain);
   if (!p || !chain) {
-    free(p);
-    free(chain);
+    mfs_free(p);
+    mfs_free(chain);
     return MFS_ENOMEM;
   }
   /* Akl-Toussaint: a point strictly inside the polygon of the extreme points
@@ -226,7 +227,7 @@ mfs_status mfs_convex_hull_2d(size_t n, const double *x, unsigned char *hull)
     for (size_t s = 0; s < k; s++)
       hull[p[chain[s]].i] = 1;
   }
-  free(p);
-  free(chain);
+  mfs_free(p);
+  mfs_free(chain);
   return MFS_OK;
 }

@@ -23,7 +23,7 @@ extern "C" {
 #endif
 
 /* The Delaunay triangles of n points x (n*2): *ntri triangles, (*tri)[3t..3t+3)
- * vertex indices counter-clockwise, malloc'ed (free()).  Triangles of zero
+ * vertex indices counter-clockwise, allocated (mfs_free()).  Triangles of zero
  * area (Qhull's triangulation of cocircular points may make them: area
  * below 1e-12 of the mean) are dropped.  MFS_OK; MFS_EINVAL (n < 3);
  * MFS_EDOMAIN (Qhull failed: all points on a line, or a precision error);

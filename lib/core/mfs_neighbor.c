@@ -1,4 +1,5 @@
 #include "mfs_neighbor.h"
+#include "mfs_alloc.h"
 
 #include <limits.h>
 #include <math.h>
@@ -11,9 +12,9 @@ void mfs_grid_free(mfs_grid *g)
 {
   if (!g)
     return;
-  free(g->start);
-  free(g->item);
-  free(g);
+  mfs_free(g->start);
+  mfs_free(g->item);
+  mfs_free(g);
 }
 
 /* Cell coordinate of x along direction k, wrapped or clamped. */
@@ -54,7 +55,7 @@ mfs_grid *mfs_grid_alloc(int dim, size_t n, const double *x, const mfs_box *box,
     if (!isfinite(x[i]))
       goto fail;
   st = MFS_ENOMEM;
-  g = calloc(1, sizeof *g);
+  g = mfs_calloc(1, sizeof *g);
   if (!g)
     goto fail;
   g->dim = dim;
@@ -100,11 +101,11 @@ mfs_grid *mfs_grid_alloc(int dim, size_t n, const double *x, const mfs_box *box,
       g->h[k] = hmin; /* clamping keeps far points in edge cells */
     ncells *= (size_t)nc;
   }
-  g->start = calloc(ncells + 1, sizeof *g->start);
-  g->item = malloc((n ? n : 1) * sizeof *g->item);
-  size_t *cellid = malloc((n ? n : 1) * sizeof *cellid);
+  g->start = mfs_calloc(ncells + 1, sizeof *g->start);
+  g->item = mfs_malloc((n ? n : 1) * sizeof *g->item);
+  size_t *cellid = mfs_malloc((n ? n : 1) * sizeof *cellid);
   if (!g->start || !g->item || !cellid) {
-    free(cellid);
+    mfs_free(cellid);
     goto fail;
   }
   for (size_t i = 0; i < n; i++) {
@@ -118,7 +119,7 @@ mfs_grid *mfs_grid_alloc(int dim, size_t n, const double *x, const mfs_box *box,
   for (size_t c = ncells; c > 0; c--)
     g->start[c] = g->start[c - 1];
   g->start[0] = 0;
-  free(cellid);
+  mfs_free(cellid);
   if (status)
     *status = MFS_OK;
   return g;
@@ -133,9 +134,9 @@ void mfs_nlist_free(mfs_nlist *nl)
 {
   if (!nl)
     return;
-  free(nl->ptr);
-  free(nl->idx);
-  free(nl);
+  mfs_free(nl->ptr);
+  mfs_free(nl->idx);
+  mfs_free(nl);
 }
 
 /* Rows are short (tens of entries): insertion sort beats qsort here. */
@@ -212,7 +213,7 @@ static int reserve(mfs_nlist *nl, size_t nnz, size_t more, size_t *cap)
   if (nnz + more <= *cap)
     return MFS_OK;
   size_t ncap = 2 * *cap > nnz + more ? 2 * *cap : nnz + more;
-  int *t = realloc(nl->idx, ncap * sizeof *t);
+  int *t = mfs_realloc(nl->idx, ncap * sizeof *t);
   if (!t)
     return MFS_ENOMEM;
   nl->idx = t;
@@ -229,13 +230,13 @@ mfs_nlist *mfs_nlist_build(const mfs_grid *g, size_t nq, const double *xq, doubl
   if (!(r > 0.0) || r > g->radius)
     goto fail;
   st = MFS_ENOMEM;
-  nl = calloc(1, sizeof *nl);
+  nl = mfs_calloc(1, sizeof *nl);
   if (!nl)
     goto fail;
   nl->nq = nq;
-  nl->ptr = malloc((nq + 1) * sizeof *nl->ptr);
+  nl->ptr = mfs_malloc((nq + 1) * sizeof *nl->ptr);
   size_t cap = 16 * nq + 16, nnz = 0;
-  nl->idx = malloc(cap * sizeof *nl->idx);
+  nl->idx = mfs_malloc(cap * sizeof *nl->idx);
   if (!nl->ptr || !nl->idx)
     goto fail;
   int dim = g->dim, per = g->box.periodic;
@@ -290,27 +291,27 @@ fail:
 
 mfs_nlist *mfs_nlist_transpose(const mfs_nlist *nl, size_t n, mfs_status *status)
 {
-  mfs_nlist *t = calloc(1, sizeof *t);
+  mfs_nlist *t = mfs_calloc(1, sizeof *t);
   size_t nnz = nl->ptr[nl->nq];
   if (!t)
     goto fail;
   t->nq = n;
-  t->ptr = calloc(n + 1, sizeof *t->ptr);
-  t->idx = malloc((nnz ? nnz : 1) * sizeof *t->idx);
+  t->ptr = mfs_calloc(n + 1, sizeof *t->ptr);
+  t->idx = mfs_malloc((nnz ? nnz : 1) * sizeof *t->idx);
   if (!t->ptr || !t->idx)
     goto fail;
   for (size_t e = 0; e < nnz; e++)
     t->ptr[nl->idx[e] + 1]++;
   for (size_t i = 0; i < n; i++)
     t->ptr[i + 1] += t->ptr[i];
-  size_t *next = malloc((n ? n : 1) * sizeof *next);
+  size_t *next = mfs_malloc((n ? n : 1) * sizeof *next);
   if (!next)
     goto fail;
   memcpy(next, t->ptr, n * sizeof *next);
   for (size_t q = 0; q < nl->nq; q++)
     for (size_t e = nl->ptr[q]; e < nl->ptr[q + 1]; e++)
       t->idx[next[nl->idx[e]]++] = (int)q;
-  free(next);
+  mfs_free(next);
   if (status)
     *status = MFS_OK;
   return t;

@@ -1,4 +1,5 @@
 #include "mfs_particles.h"
+#include "mfs_alloc.h"
 
 #include <gsl/gsl_errno.h>
 #include <gsl/gsl_rng.h>
@@ -15,13 +16,13 @@ void mfs_particles_free(mfs_particles *p)
 {
   if (!p)
     return;
-  free(p->x);
-  free(p->vol);
-  free(p->flags);
-  free(p->ij);
-  free(p->conn);
-  free(p->cellx);
-  free(p);
+  mfs_free(p->x);
+  mfs_free(p->vol);
+  mfs_free(p->flags);
+  mfs_free(p->ij);
+  mfs_free(p->conn);
+  mfs_free(p->cellx);
+  mfs_free(p);
 }
 
 double mfs_cell_measure(const mfs_particles *p, size_t c)
@@ -189,7 +190,7 @@ mfs_particles *mfs_lattice_alloc(const mfs_lattice_spec *s, mfs_status *status)
   if (st != MFS_OK)
     goto fail;
   st = MFS_ENOMEM;
-  p = calloc(1, sizeof *p);
+  p = mfs_calloc(1, sizeof *p);
   if (!p)
     goto fail;
   int dim = s->dim;
@@ -206,10 +207,10 @@ mfs_particles *mfs_lattice_alloc(const mfs_lattice_spec *s, mfs_status *status)
   p->a2[1] = p->dy;
   p->box.dim = dim;
   p->box.periodic = s->periodic;
-  p->x = malloc(p->n * dim * sizeof *p->x);
-  p->vol = calloc(p->n, sizeof *p->vol);
-  p->flags = calloc(p->n, 1);
-  p->ij = malloc(p->n * 2 * sizeof *p->ij);
+  p->x = mfs_malloc(p->n * dim * sizeof *p->x);
+  p->vol = mfs_calloc(p->n, sizeof *p->vol);
+  p->flags = mfs_calloc(p->n, 1);
+  p->ij = mfs_malloc(p->n * 2 * sizeof *p->ij);
   if (!p->x || !p->vol || !p->flags || !p->ij)
     goto fail;
 
@@ -252,8 +253,8 @@ mfs_particles *mfs_lattice_alloc(const mfs_lattice_spec *s, mfs_status *status)
   p->cells = kind;
   p->nvert = dim == 1 ? 2 : (kind == MFS_CELLS_QUAD ? 4 : 3);
   size_t maxcell = (size_t)p->nx * p->ny * (p->nvert == 3 ? 2 : 1);
-  p->conn = malloc(maxcell * p->nvert * sizeof *p->conn);
-  p->cellx = malloc(maxcell * p->nvert * dim * sizeof *p->cellx);
+  p->conn = mfs_malloc(maxcell * p->nvert * sizeof *p->conn);
+  p->cellx = mfs_malloc(maxcell * p->nvert * dim * sizeof *p->cellx);
   if (!p->conn || !p->cellx)
     goto fail;
   build_cells(p, kind);
@@ -307,11 +308,11 @@ static int cmp_key1(const void *a, const void *b)
 static int cells_1d(mfs_particles *p)
 {
   size_t n = p->n;
-  key1 *k = malloc(n * sizeof *k);
-  p->conn = malloc((n - 1) * 2 * sizeof *p->conn);
-  p->cellx = malloc((n - 1) * 2 * sizeof *p->cellx);
+  key1 *k = mfs_malloc(n * sizeof *k);
+  p->conn = mfs_malloc((n - 1) * 2 * sizeof *p->conn);
+  p->cellx = mfs_malloc((n - 1) * 2 * sizeof *p->cellx);
   if (!k || !p->conn || !p->cellx) {
-    free(k);
+    mfs_free(k);
     return MFS_ENOMEM;
   }
   for (size_t i = 0; i < n; i++)
@@ -319,7 +320,7 @@ static int cells_1d(mfs_particles *p)
   qsort(k, n, sizeof *k, cmp_key1);
   for (size_t c = 0; c + 1 < n; c++) {
     if (!(k[c + 1].x > k[c].x)) { /* two particles at one place */
-      free(k);
+      mfs_free(k);
       return MFS_EINVAL;
     }
     p->conn[2 * c] = (int)k[c].i;
@@ -330,7 +331,7 @@ static int cells_1d(mfs_particles *p)
   p->ncell = n - 1;
   p->flags[k[0].i] |= MFS_BND_XLO;
   p->flags[k[n - 1].i] |= MFS_BND_XHI;
-  free(k);
+  mfs_free(k);
   return MFS_OK;
 }
 
@@ -343,7 +344,7 @@ static int cells_2d(mfs_particles *p)
     return st;
   p->conn = tri;
   p->ncell = nt;
-  p->cellx = malloc(nt * 6 * sizeof *p->cellx);
+  p->cellx = mfs_malloc(nt * 6 * sizeof *p->cellx);
   if (!p->cellx)
     return MFS_ENOMEM;
   for (size_t c = 0; c < nt; c++)
@@ -361,7 +362,7 @@ mfs_particles *mfs_particles_from_set(const mfs_point_set *s, int cells, mfs_sta
   if (!set_ok(s))
     goto fail;
   st = MFS_ENOMEM;
-  p = calloc(1, sizeof *p);
+  p = mfs_calloc(1, sizeof *p);
   if (!p)
     goto fail;
   int dim = s->dim;
@@ -372,10 +373,10 @@ mfs_particles *mfs_particles_from_set(const mfs_point_set *s, int cells, mfs_sta
   p->nx = (int)n;
   p->ny = 1;
   p->box.dim = dim;
-  p->x = malloc(n * dim * sizeof *p->x);
-  p->vol = malloc(n * sizeof *p->vol);
-  p->flags = calloc(n, 1);
-  p->ij = calloc(n * 2, sizeof *p->ij);
+  p->x = mfs_malloc(n * dim * sizeof *p->x);
+  p->vol = mfs_malloc(n * sizeof *p->vol);
+  p->flags = mfs_calloc(n, 1);
+  p->ij = mfs_calloc(n * 2, sizeof *p->ij);
   if (!p->x || !p->vol || !p->flags || !p->ij)
     goto fail;
   memcpy(p->x, s->x, n * dim * sizeof *p->x);
@@ -473,7 +474,7 @@ double mfs_point_set_spacing(const mfs_point_set *s)
 {
   if (!s || !s->vol || s->n < 1)
     return NAN;
-  double *v = malloc(s->n * sizeof *v);
+  double *v = mfs_malloc(s->n * sizeof *v);
   if (!v)
     return NAN;
   memcpy(v, s->vol, s->n * sizeof *v);
@@ -481,7 +482,7 @@ double mfs_point_set_spacing(const mfs_point_set *s)
   double med = select_kth(v, s->n, k);
   if (s->n % 2 == 0) /* the largest of the lower half */
     med = 0.5 * (med + select_kth(v, k, k - 1));
-  free(v);
+  mfs_free(v);
   return s->dim == 1 ? med : sqrt(med);
 }
 

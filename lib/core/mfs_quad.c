@@ -1,4 +1,5 @@
 #include "mfs_quad.h"
+#include "mfs_alloc.h"
 
 #include <gsl/gsl_errno.h>
 #include <gsl/gsl_integration.h>
@@ -67,10 +68,10 @@ void mfs_quad_free(mfs_quad *q)
 {
   if (!q)
     return;
-  free(q->x);
-  free(q->w);
-  free(q->node);
-  free(q);
+  mfs_free(q->x);
+  mfs_free(q->w);
+  mfs_free(q->node);
+  mfs_free(q);
 }
 
 /* Appends one point. */
@@ -166,16 +167,16 @@ mfs_quad *mfs_quad_alloc(const mfs_quad_type *t, const mfs_particles *p, mfs_sta
   if ((t->centres || t->gauss_n > 0) && p->ncell == 0) /* a set built without cells */
     goto fail;
   st = MFS_ENOMEM;
-  q = calloc(1, sizeof *q);
+  q = mfs_calloc(1, sizeof *q);
   if (!q)
     goto fail;
   q->dim = p->dim;
   int g = t->gauss_n;
   size_t per = g > 0 ? (size_t)g * (p->dim == 1 ? 1 : (size_t)g) : 1;
   size_t cap = p->n + p->ncell * per;
-  q->x = malloc(cap * p->dim * sizeof *q->x);
-  q->w = malloc(cap * sizeof *q->w);
-  q->node = malloc(cap * sizeof *q->node);
+  q->x = mfs_malloc(cap * p->dim * sizeof *q->x);
+  q->w = mfs_malloc(cap * sizeof *q->w);
+  q->node = mfs_malloc(cap * sizeof *q->node);
   if (!q->x || !q->w || !q->node)
     goto fail;
 

@@ -1,4 +1,5 @@
 #include "mfs_voronoi.h"
+#include "mfs_alloc.h"
 
 #include <math.h>
 #include <stdlib.h>
@@ -59,7 +60,7 @@ mfs_status mfs_voronoi_areas(size_t n, const double *x, const mfs_box *box, doub
       if (x[2 * i] < box->lo[0] || x[2 * i] > box->hi[0] || x[2 * i + 1] < box->lo[1] ||
           x[2 * i + 1] > box->hi[1])
         return MFS_EINVAL;
-  unsigned char *done = calloc(n ? n : 1, 1);
+  unsigned char *done = mfs_calloc(n ? n : 1, 1);
   if (!done)
     return MFS_ENOMEM;
   double R = 3.0 * sqrt(Lx * Ly / (double)(n ? n : 1));
@@ -120,6 +121,6 @@ mfs_status mfs_voronoi_areas(size_t n, const double *x, const mfs_box *box, doub
       break;
     R *= 2.0;
   }
-  free(done);
+  mfs_free(done);
   return st;
 }

@@ -1,4 +1,5 @@
 #include "mfs_assemble.h"
+#include "mfs_alloc.h"
 
 #include <math.h>
 #include <stdlib.h>
@@ -22,16 +23,16 @@ void mfs_row_free(mfs_row *r)
 {
   if (!r)
     return;
-  free(r->col);
-  free(r->pcol);
-  free(r->K);
-  free(r->M);
-  free(r->G);
-  free(r->mark);
-  free(r->eidx);
-  free(r->dphi);
-  free(r->dgrad);
-  free(r->dwork);
+  mfs_free(r->col);
+  mfs_free(r->pcol);
+  mfs_free(r->K);
+  mfs_free(r->M);
+  mfs_free(r->G);
+  mfs_free(r->mark);
+  mfs_free(r->eidx);
+  mfs_free(r->dphi);
+  mfs_free(r->dgrad);
+  mfs_free(r->dwork);
   mfs_eval_free(&r->ev);
   memset(r, 0, sizeof *r);
 }
@@ -76,15 +77,15 @@ mfs_status mfs_row_init(mfs_row *r, const mfs_plan *pl, const mfs_forms *f)
   r->ndof = mfs_physics_ndof(f->physics);
   r->gsz = euler2 ? 4 : 1;
   r->cap = cap;
-  r->col = malloc(cap * sizeof *r->col);
-  r->pcol = malloc(mfs_plan_max_neighbours(pl) * sizeof *r->pcol);
-  r->mark = malloc((n ? n : 1) * sizeof *r->mark);
+  r->col = mfs_malloc(cap * sizeof *r->col);
+  r->pcol = mfs_malloc(mfs_plan_max_neighbours(pl) * sizeof *r->pcol);
+  r->mark = mfs_malloc((n ? n : 1) * sizeof *r->mark);
   if (f->stiffness)
-    r->K = malloc(cap * (size_t)(r->ndof * r->ndof) * sizeof *r->K);
+    r->K = mfs_malloc(cap * (size_t)(r->ndof * r->ndof) * sizeof *r->K);
   if (f->density != 0.0 || f->ls_beta > 0.0)
-    r->M = malloc(cap * sizeof *r->M);
+    r->M = mfs_malloc(cap * sizeof *r->M);
   if (f->euler != MFS_EULER_NONE)
-    r->G = malloc(cap * (size_t)r->gsz * sizeof *r->G);
+    r->G = mfs_malloc(cap * (size_t)r->gsz * sizeof *r->G);
   if (!r->col || !r->pcol || !r->mark || (f->stiffness && !r->K) ||
       ((f->density != 0.0 || f->ls_beta > 0.0) && !r->M) || (f->euler && !r->G))
     goto nomem;
@@ -92,10 +93,10 @@ mfs_status mfs_row_init(mfs_row *r, const mfs_plan *pl, const mfs_forms *f)
     r->mark[i] = -1;
   if (f->euler == MFS_EULER_CONSISTENT) {
     size_t mx = mfs_plan_max_neighbours(pl);
-    r->eidx = malloc(mx * sizeof *r->eidx);
-    r->dphi = malloc(mx * sizeof *r->dphi);
-    r->dgrad = malloc(mx * (size_t)(p->dim * p->dim) * sizeof *r->dgrad);
-    r->dwork = malloc(mfs_shape_work_len(p->dim, (int)mx) * sizeof *r->dwork);
+    r->eidx = mfs_malloc(mx * sizeof *r->eidx);
+    r->dphi = mfs_malloc(mx * sizeof *r->dphi);
+    r->dgrad = mfs_malloc(mx * (size_t)(p->dim * p->dim) * sizeof *r->dgrad);
+    r->dwork = mfs_malloc(mfs_shape_work_len(p->dim, (int)mx) * sizeof *r->dwork);
     if (!r->eidx || !r->dphi || !r->dgrad || !r->dwork ||
         mfs_eval_init(&r->ev, mfs_plan_disc(pl), mfs_plan_support(pl), 1, &p->box, mx) != MFS_OK)
       goto nomem;
@@ -393,10 +394,10 @@ static mfs_status assemble_csr(const mfs_plan *pl, const mfs_forms *f, int want_
     size_t len = r.len;
     if (pos + len * nd2 > cap) {
       size_t ncap = 2 * cap + len * nd2;
-      int *ti = realloc(A->idx, ncap * sizeof *ti);
+      int *ti = mfs_realloc(A->idx, ncap * sizeof *ti);
       if (ti)
         A->idx = ti;
-      double *tv = ti ? realloc(A->val, ncap * sizeof *tv) : NULL;
+      double *tv = ti ? mfs_realloc(A->val, ncap * sizeof *tv) : NULL;
       if (!tv) {
         st = MFS_ENOMEM;
         break;
@@ -517,11 +518,11 @@ mfs_status mfs_stencil(const mfs_disc *d, mfs_stencil_entry **entries, size_t *n
     goto done;
   st = MFS_ENOMEM;
   if (!d->consistent_mass) {
-    ml = malloc(p->n * sizeof *ml);
+    ml = mfs_malloc(p->n * sizeof *ml);
     if (!ml || mfs_assemble_mass_lumped(pl, &d->material, ml) != MFS_OK)
       goto done;
   }
-  out = malloc((r.len ? r.len : 1) * sizeof *out);
+  out = mfs_malloc((r.len ? r.len : 1) * sizeof *out);
   if (!out)
     goto done;
   for (size_t i = 0; i < r.len; i++) { /* lattice offsets by the minimum image */
@@ -540,8 +541,8 @@ mfs_status mfs_stencil(const mfs_disc *d, mfs_stencil_entry **entries, size_t *n
   st = MFS_OK;
 done:
   mfs_row_free(&r);
-  free(out);
-  free(ml);
+  mfs_free(out);
+  mfs_free(ml);
   mfs_plan_free(pl);
   mfs_quad_free(q);
   mfs_particles_free(p);

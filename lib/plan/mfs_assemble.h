@@ -122,7 +122,7 @@ typedef struct {
   double K, M;  /* stiffness and mass (lumped: M only at (0, 0)) */
 } mfs_stencil_entry;
 
-/* *entries is allocated (free()), sorted by (k, j).  MFS_OK; MFS_EINVAL
+/* *entries is allocated (mfs_free()), sorted by (k, j).  MFS_OK; MFS_EINVAL
  * (not an infinite lattice, not scalar physics, a bad d); MFS_ESINGULAR at
  * quadrature point *bad; MFS_ENOMEM. */
 mfs_status mfs_stencil(const mfs_disc *d, mfs_stencil_entry **entries, size_t *n, size_t *bad);

@@ -1,4 +1,5 @@
 #include "mfs_eval.h"
+#include "mfs_alloc.h"
 
 #include <stdlib.h>
 
@@ -31,9 +32,9 @@ void mfs_eval_free(mfs_eval *ev)
 {
   if (!ev)
     return;
-  free(ev->d);
-  free(ev->v);
-  free(ev->work);
+  mfs_free(ev->d);
+  mfs_free(ev->v);
+  mfs_free(ev->work);
   ev->d = ev->v = ev->work = NULL;
   ev->cap = 0;
 }
@@ -43,14 +44,14 @@ mfs_status mfs_eval_reserve(mfs_eval *ev, size_t cap)
   if (cap <= ev->cap)
     return MFS_OK;
   int dim = ev->ctx.dim;
-  double *d = malloc(cap * (size_t)dim * sizeof *d);
-  double *v = malloc(cap * sizeof *v);
+  double *d = mfs_malloc(cap * (size_t)dim * sizeof *d);
+  double *v = mfs_malloc(cap * sizeof *v);
   size_t wl = mfs_shape_work_len(dim, (int)cap);
-  double *w = malloc((wl > 7 * cap ? wl : 7 * cap) * sizeof *w); /* gather_1d: 7 cap */
+  double *w = mfs_malloc((wl > 7 * cap ? wl : 7 * cap) * sizeof *w); /* gather_1d: 7 cap */
   if (!d || !v || !w) {
-    free(d);
-    free(v);
-    free(w);
+    mfs_free(d);
+    mfs_free(v);
+    mfs_free(w);
     return MFS_ENOMEM;
   }
   mfs_eval_free(ev);

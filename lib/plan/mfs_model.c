@@ -1,4 +1,5 @@
 #include "mfs_model.h"
+#include "mfs_alloc.h"
 
 #include <math.h>
 #include <stdio.h>
@@ -58,12 +59,12 @@ void mfs_model_free(mfs_model *m)
   mfs_plan_free(m->pl);
   mfs_quad_free(m->q);
   mfs_particles_free(m->p);
-  free(m->fixed);
-  free(m->dof);
+  mfs_free(m->fixed);
+  mfs_free(m->dof);
   mfs_csr_free(m->K);
   mfs_csr_free(m->M);
-  free(m->m);
-  free(m);
+  mfs_free(m->m);
+  mfs_free(m);
 }
 
 void mfs_model_release_plan(mfs_model *m)
@@ -132,7 +133,7 @@ mfs_model *mfs_model_alloc(const mfs_model_spec *spec, mfs_status *status, size_
   if (st != MFS_OK)
     goto done;
   st = MFS_ENOMEM;
-  m = calloc(1, sizeof *m);
+  m = mfs_calloc(1, sizeof *m);
   if (!m)
     goto done;
   m->spec = *spec;
@@ -156,9 +157,9 @@ mfs_model *mfs_model_alloc(const mfs_model_spec *spec, mfs_status *status, size_
 
   size_t np = m->p->n, nfull = np * (size_t)m->ndof;
   st = MFS_ENOMEM;
-  m->fixed = calloc(np, 1);
-  keep = malloc(nfull * sizeof *keep);
-  m->dof = malloc(nfull * sizeof *m->dof);
+  m->fixed = mfs_calloc(np, 1);
+  keep = mfs_malloc(nfull * sizeof *keep);
+  m->dof = mfs_malloc(nfull * sizeof *m->dof);
   if (!m->fixed || !keep || !m->dof)
     goto done;
   if (spec->fixed == MFS_FIX_MASK)
@@ -188,7 +189,7 @@ mfs_model *mfs_model_alloc(const mfs_model_spec *spec, mfs_status *status, size_
       goto done;
   } else {
     st = MFS_ENOMEM;
-    ml = malloc(nfull * sizeof *ml);
+    ml = mfs_malloc(nfull * sizeof *ml);
     if (!ml)
       goto done;
     st = mfs_assemble_mass_lumped(m->pl, &m->mat, ml);
@@ -215,7 +216,7 @@ mfs_model *mfs_model_alloc(const mfs_model_spec *spec, mfs_status *status, size_
       if (!m->M)
         goto done;
     } else {
-      m->m = malloc(m->n * sizeof *m->m);
+      m->m = mfs_malloc(m->n * sizeof *m->m);
       if (!m->m)
         goto done;
       for (size_t r = 0; r < m->n; r++)
@@ -224,8 +225,8 @@ mfs_model *mfs_model_alloc(const mfs_model_spec *spec, mfs_status *status, size_
   }
   st = MFS_OK;
 done:
-  free(keep);
-  free(ml);
+  mfs_free(keep);
+  mfs_free(ml);
   mfs_csr_free(K);
   mfs_csr_free(M);
   if (st != MFS_OK) {

@@ -1,4 +1,5 @@
 #include "mfs_plan.h"
+#include "mfs_alloc.h"
 
 #include <stdlib.h>
 #include <string.h>
@@ -25,10 +26,10 @@ void mfs_plan_free(mfs_plan *pl)
   if (!pl)
     return;
   mfs_nlist_free(pl->nl);
-  free(pl->tptr);
-  free(pl->tq);
-  free(pl->tab);
-  free(pl);
+  mfs_free(pl->tptr);
+  mfs_free(pl->tq);
+  mfs_free(pl->tab);
+  mfs_free(pl);
 }
 
 mfs_plan *mfs_plan_alloc(const mfs_disc *d, const mfs_particles *p, const mfs_quad *q,
@@ -40,7 +41,7 @@ mfs_plan *mfs_plan_alloc(const mfs_disc *d, const mfs_particles *p, const mfs_qu
   if (!d || !p || !q || !d->kernel || !d->shape || !(d->dilation > 0.0) || q->dim != p->dim)
     goto done;
   st = MFS_ENOMEM;
-  pl = calloc(1, sizeof *pl);
+  pl = mfs_calloc(1, sizeof *pl);
   if (!pl)
     goto done;
   pl->disc = *d;
@@ -62,11 +63,11 @@ mfs_plan *mfs_plan_alloc(const mfs_disc *d, const mfs_particles *p, const mfs_qu
     size_t len = pl->nl->ptr[Q + 1] - pl->nl->ptr[Q];
     pl->maxrow = len > pl->maxrow ? len : pl->maxrow;
   }
-  pl->tptr = calloc(n + 1, sizeof *pl->tptr);
-  pl->tq = malloc((nnz ? nnz : 1) * sizeof *pl->tq);
-  size_t *next = malloc((n ? n : 1) * sizeof *next);
+  pl->tptr = mfs_calloc(n + 1, sizeof *pl->tptr);
+  pl->tq = mfs_malloc((nnz ? nnz : 1) * sizeof *pl->tq);
+  size_t *next = mfs_malloc((n ? n : 1) * sizeof *next);
   if (!pl->tptr || !pl->tq || !next) {
-    free(next);
+    mfs_free(next);
     goto done;
   }
   for (size_t e = 0; e < nnz; e++)
@@ -77,7 +78,7 @@ mfs_plan *mfs_plan_alloc(const mfs_disc *d, const mfs_particles *p, const mfs_qu
   for (size_t Q = 0; Q < nq; Q++)
     for (size_t e = pl->nl->ptr[Q]; e < pl->nl->ptr[Q + 1]; e++)
       pl->tq[next[pl->nl->idx[e]]++] = (int)Q;
-  free(next);
+  mfs_free(next);
   st = MFS_OK;
 done:
   mfs_grid_free(g);
@@ -94,7 +95,7 @@ mfs_status mfs_plan_tabulate(mfs_plan *pl, int order, size_t *bad)
 {
   if (!pl || order < 1 || order > 2)
     return MFS_EINVAL;
-  free(pl->tab);
+  mfs_free(pl->tab);
   pl->tab = NULL;
   pl->order = pl->ncomp = 0;
   const mfs_particles *p = pl->p;
@@ -104,8 +105,8 @@ mfs_status mfs_plan_tabulate(mfs_plan *pl, int order, size_t *bad)
   mfs_eval ev;
   mfs_status st = mfs_eval_init(&ev, &pl->disc, pl->a, order, &p->box, pl->maxrow);
   ev.within = 1; /* the lists hold exactly the particles within a (mfs_nlist_build) */
-  double *tab = malloc((nl->ptr[q->n] ? nl->ptr[q->n] : 1) * (size_t)ncomp * sizeof *tab);
-  int *kept = malloc(pl->maxrow * sizeof *kept);
+  double *tab = mfs_malloc((nl->ptr[q->n] ? nl->ptr[q->n] : 1) * (size_t)ncomp * sizeof *tab);
+  int *kept = mfs_malloc(pl->maxrow * sizeof *kept);
   if (st == MFS_OK && (!tab || !kept))
     st = MFS_ENOMEM;
   double rcond = 1.0;
@@ -120,10 +121,10 @@ mfs_status mfs_plan_tabulate(mfs_plan *pl, int order, size_t *bad)
       *bad = Q;
   }
   mfs_eval_free(&ev);
-  free(kept);
+  mfs_free(kept);
   pl->rcond = rcond;
   if (st != MFS_OK) {
-    free(tab);
+    mfs_free(tab);
     return st;
   }
   pl->tab = tab;

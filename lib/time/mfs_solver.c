@@ -1,5 +1,6 @@
 /* Reference explicit solver (see mfs_solver.h). */
 #include "mfs_solver.h"
+#include "mfs_alloc.h"
 
 #include <math.h>
 #include <stdlib.h>
@@ -100,10 +101,10 @@ static int search(mfs_solver *s)
   }
   if (maxrow > w->cap) {
     size_t cap = 2 * maxrow;
-    double *o = realloc(w->out, 2 * cap * sizeof *o);
+    double *o = mfs_realloc(w->out, 2 * cap * sizeof *o);
     if (o)
       w->out = o;
-    int *l = o ? realloc(w->loc, cap * sizeof *l) : NULL;
+    int *l = o ? mfs_realloc(w->loc, cap * sizeof *l) : NULL;
     if (!l || mfs_eval_reserve(&w->ev, cap) != MFS_OK)
       return MFS_ENOMEM;
     w->loc = l;
@@ -324,13 +325,13 @@ void mfs_solver_free(mfs_solver *s)
     mfs_particles_free(w->p);
     mfs_nlist_free(w->cand);
     mfs_eval_free(&w->ev);
-    free(w->fixed);
-    free(w->out);
-    free(w->loc);
-    free(w);
+    mfs_free(w->fixed);
+    mfs_free(w->out);
+    mfs_free(w->loc);
+    mfs_free(w);
   }
-  free(s->u);
-  free(s);
+  mfs_free(s->u);
+  mfs_free(s);
 }
 
 mfs_solver *mfs_solver_alloc(const mfs_solver_spec *spec, mfs_status *status, size_t *bad)
@@ -345,8 +346,8 @@ mfs_solver *mfs_solver_alloc(const mfs_solver_spec *spec, mfs_status *status, si
       d->frame == MFS_FRAME_EULERIAN_CONSISTENT || d->material.physics != MFS_PHYS_SCALAR)
     goto fail;
   st = MFS_ENOMEM;
-  s = calloc(1, sizeof *s);
-  if (!s || !(s->w = calloc(1, sizeof *s->w)))
+  s = mfs_calloc(1, sizeof *s);
+  if (!s || !(s->w = mfs_calloc(1, sizeof *s->w)))
     goto fail;
   mfs_solver_work *w = s->w;
   s->spec = *spec;
@@ -372,10 +373,10 @@ mfs_solver *mfs_solver_alloc(const mfs_solver_spec *spec, mfs_status *status, si
   s->xq0 = w->q->x;
   s->wq = w->q->w;
   /* one block: u v a m f f0 u0 v0 ku(4) kv(4) tu x xb (13+... n) + F sigma xq xqb (4 nq) */
-  double *blk = calloc(19 * n + 4 * nq, sizeof *blk);
-  w->fixed = calloc(n, 1);
+  double *blk = mfs_calloc(19 * n + 4 * nq, sizeof *blk);
+  w->fixed = mfs_calloc(n, 1);
   if (!blk || !w->fixed) {
-    free(blk);
+    mfs_free(blk);
     goto fail;
   }
   s->u = blk;
@@ -429,7 +430,12 @@ mfs_solver *mfs_solver_alloc(const mfs_solver_spec *spec, mfs_status *status, si
                       .modulus = d->material.modulus + d->material.initial_stress,
                       .density = d->material.density};
   mfs_bound_result br;
-  if (mat.modulus > 0.0 && mfs_bound_plan(w->pl, &mat, w->fixed, &br) == MFS_OK) {
+  mfs_status bst = mat.modulus > 0.0 ? mfs_bound_plan(w->pl, &mat, w->fixed, &br) : MFS_EINVAL;
+  if (bst == MFS_ENOMEM) { /* not a reason to choose the step from the power iteration alone */
+    st = bst;
+    goto fail;
+  }
+  if (bst == MFS_OK) {
     s->lambda_bound = br.lambda;
     s->negative_phi = br.negative_phi;
   }

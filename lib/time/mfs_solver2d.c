@@ -1,5 +1,6 @@
 /* Reference explicit solver for linear Lagrangian models (see mfs_solver2d.h). */
 #include "mfs_solver2d.h"
+#include "mfs_alloc.h"
 
 #include <math.h>
 #include <stdlib.h>
@@ -142,10 +143,10 @@ static int search(mfs_solver2d *s)
   }
   if (maxrow > w->cap) {
     size_t cap = 2 * maxrow;
-    double *o = realloc(w->out, 3 * cap * sizeof *o);
+    double *o = mfs_realloc(w->out, 3 * cap * sizeof *o);
     if (o)
       w->out = o;
-    int *l = o ? realloc(w->loc, cap * sizeof *l) : NULL;
+    int *l = o ? mfs_realloc(w->loc, cap * sizeof *l) : NULL;
     if (!l || mfs_eval_reserve(&w->ev, cap) != MFS_OK)
       return MFS_ENOMEM;
     w->loc = l;
@@ -343,18 +344,18 @@ void mfs_solver2d_free(mfs_solver2d *s)
   if (!s)
     return;
   mfs_model_free(s->model);
-  free(s->u); /* the block of every vector */
+  mfs_free(s->u); /* the block of every vector */
   if (s->w) {
     mfs_solver2d_work *w = s->w;
-    free(w->comp);
-    free(w->uf); /* the block of the stressed plate's vectors */
+    mfs_free(w->comp);
+    mfs_free(w->uf); /* the block of the stressed plate's vectors */
     mfs_eval_free(&w->ev);
     mfs_nlist_free(w->cand);
-    free(w->out);
-    free(w->loc);
+    mfs_free(w->out);
+    mfs_free(w->loc);
   }
-  free(s->w);
-  free(s);
+  mfs_free(s->w);
+  mfs_free(s);
 }
 
 mfs_solver2d *mfs_solver2d_alloc(const mfs_model_spec *spec, mfs_status *status, size_t *bad)
@@ -380,7 +381,7 @@ static mfs_status stressed_init(mfs_solver2d *s, const double *sigma0, double sk
   int euler = md->spec.disc.frame == MFS_FRAME_EULERIAN;
   /* one block: uf ff (2 np each), f0 (n), and for the Eulerian kernel x xb (2 np each), xq xqb (2 nq each) */
   size_t len = 4 * np + s->n + (euler ? 4 * np + 4 * nq : 0);
-  double *blk = calloc(len ? len : 1, sizeof *blk);
+  double *blk = mfs_calloc(len ? len : 1, sizeof *blk);
   if (!blk)
     return MFS_ENOMEM;
   w->uf = blk;
@@ -424,7 +425,7 @@ mfs_solver2d *mfs_solver2d_alloc_stressed(const mfs_model_spec *spec, const doub
         goto fail;
   }
   st = MFS_ENOMEM;
-  if (!(s = calloc(1, sizeof *s)) || !(s->w = calloc(1, sizeof *s->w)))
+  if (!(s = mfs_calloc(1, sizeof *s)) || !(s->w = mfs_calloc(1, sizeof *s->w)))
     goto fail;
   if (!(s->model = mfs_model_alloc(spec, &st, bad)))
     goto fail;
@@ -434,8 +435,8 @@ mfs_solver2d *mfs_solver2d_alloc_stressed(const mfs_model_spec *spec, const doub
   s->n = n;
   s->m = md->m;
   /* one block: u v a u0 v0 ku(4) kv(4) tu X Y */
-  double *blk = calloc(16 * n, sizeof *blk);
-  int *comp = s->w->comp = malloc(n * sizeof *comp);
+  double *blk = mfs_calloc(16 * n, sizeof *blk);
+  int *comp = s->w->comp = mfs_malloc(n * sizeof *comp);
   s->u = blk; /* both freed by mfs_solver2d_free */
   if (!blk || !comp)
     goto fail;
@@ -459,7 +460,12 @@ mfs_solver2d *mfs_solver2d_alloc_stressed(const mfs_model_spec *spec, const doub
   }
   /* stable step: the rule of mfs_step_lambda (mfs_bound.h) */
   mfs_bound_result br;
-  if (mfs_bound_of_model(md, &br) == MFS_OK) {
+  mfs_status bst = mfs_bound_of_model(md, &br);
+  if (bst == MFS_ENOMEM) { /* not a reason to choose the step from the power iteration alone */
+    st = bst;
+    goto fail;
+  }
+  if (bst == MFS_OK) {
     s->lambda_bound = br.lambda;
     s->negative_phi = br.negative_phi;
   }

@@ -1,5 +1,6 @@
 /* Taylor-SPH for the 1D stress-velocity bar (see mfs_tsph.h). */
 #include "mfs_tsph.h"
+#include "mfs_alloc.h"
 
 #include <complex.h>
 #undef I /* particle indices are I, J; the imaginary unit is _Complex_I */
@@ -47,11 +48,11 @@ mfs_status mfs_tsph_scheme_parse(const char *name, mfs_tsph_scheme *s)
 
 static void op_free(op *o)
 {
-  free(o->ptr);
-  free(o->col);
-  free(o->wi);
-  free(o->wg);
-  free(o->gsum);
+  mfs_free(o->ptr);
+  mfs_free(o->col);
+  mfs_free(o->wi);
+  mfs_free(o->wg);
+  mfs_free(o->gsum);
   memset(o, 0, sizeof *o);
 }
 
@@ -63,8 +64,8 @@ static int op_build(op *o, const mfs_kernel_type *k, double a, const double *yt,
 {
   memset(o, 0, sizeof *o);
   o->rows = nt;
-  o->ptr = malloc((nt + 1) * sizeof *o->ptr);
-  o->gsum = malloc((nt ? nt : 1) * sizeof *o->gsum);
+  o->ptr = mfs_malloc((nt + 1) * sizeof *o->ptr);
+  o->gsum = mfs_malloc((nt ? nt : 1) * sizeof *o->gsum);
   if (!o->ptr || !o->gsum)
     return MFS_ENOMEM;
   size_t lo = 0, nnz = 0;
@@ -76,9 +77,9 @@ static int op_build(op *o, const mfs_kernel_type *k, double a, const double *yt,
       nnz++;
     o->ptr[i + 1] = nnz;
   }
-  o->col = malloc((nnz ? nnz : 1) * sizeof *o->col);
-  o->wi = malloc((nnz ? nnz : 1) * sizeof *o->wi);
-  o->wg = malloc((nnz ? nnz : 1) * sizeof *o->wg);
+  o->col = mfs_malloc((nnz ? nnz : 1) * sizeof *o->col);
+  o->wi = mfs_malloc((nnz ? nnz : 1) * sizeof *o->wi);
+  o->wg = mfs_malloc((nnz ? nnz : 1) * sizeof *o->wg);
   if (!o->col || !o->wi || !o->wg)
     return MFS_ENOMEM;
   lo = 0;
@@ -141,20 +142,20 @@ void mfs_tsph_free(mfs_tsph *s)
     return;
   if (s->w) {
     mfs_tsph_work *w = s->w;
-    free(w->X);
-    free(w->Xv);
-    free(w->vol);
-    free(w->volv);
-    free(w->U);
-    free(w->U0);
-    free(w->tmp);
-    free(w->q);
+    mfs_free(w->X);
+    mfs_free(w->Xv);
+    mfs_free(w->vol);
+    mfs_free(w->volv);
+    mfs_free(w->U);
+    mfs_free(w->U0);
+    mfs_free(w->tmp);
+    mfs_free(w->q);
     op_free(&w->rv);
     op_free(&w->vr);
     op_free(&w->rr);
-    free(w);
+    mfs_free(w);
   }
-  free(s);
+  mfs_free(s);
 }
 
 static int spec_ok(const mfs_tsph_spec *sp)
@@ -179,8 +180,8 @@ mfs_tsph *mfs_tsph_alloc(const mfs_tsph_spec *spec, mfs_status *status)
     st = MFS_EINVAL;
     goto fail;
   }
-  s = calloc(1, sizeof *s);
-  if (!s || !(s->w = calloc(1, sizeof *s->w)))
+  s = mfs_calloc(1, sizeof *s);
+  if (!s || !(s->w = mfs_calloc(1, sizeof *s->w)))
     goto fail;
   mfs_tsph_work *w = s->w;
   s->spec = *spec;
@@ -192,14 +193,14 @@ mfs_tsph *mfs_tsph_alloc(const mfs_tsph_spec *spec, mfs_status *status)
   s->n = n;
   s->nv = nv;
   s->dx = spec->disc.source.lx / (double)(n - 1);
-  w->X = malloc(n * sizeof *w->X);
-  w->vol = malloc(n * sizeof *w->vol);
-  w->Xv = malloc((n - 1) * sizeof *w->Xv);
-  w->volv = malloc((n - 1) * sizeof *w->volv);
-  w->U = calloc(4 * n, sizeof *w->U);
-  w->U0 = calloc(4 * n, sizeof *w->U0);
-  w->tmp = calloc(20 * n + 6 * (n - 1), sizeof *w->tmp);
-  w->q = calloc(2 * n, sizeof *w->q);
+  w->X = mfs_malloc(n * sizeof *w->X);
+  w->vol = mfs_malloc(n * sizeof *w->vol);
+  w->Xv = mfs_malloc((n - 1) * sizeof *w->Xv);
+  w->volv = mfs_malloc((n - 1) * sizeof *w->volv);
+  w->U = mfs_calloc(4 * n, sizeof *w->U);
+  w->U0 = mfs_calloc(4 * n, sizeof *w->U0);
+  w->tmp = mfs_calloc(20 * n + 6 * (n - 1), sizeof *w->tmp);
+  w->q = mfs_calloc(2 * n, sizeof *w->q);
   if (!w->X || !w->vol || !w->Xv || !w->volv || !w->U || !w->U0 || !w->tmp || !w->q)
     goto fail;
   for (size_t I = 0; I < n; I++) {

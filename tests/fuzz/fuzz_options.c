@@ -14,6 +14,7 @@
 #include <string.h>
 
 #include "cli.h"
+#include "mfs_alloc.h"
 #include "mfstab.h"
 
 static jmp_buf back;
@@ -61,9 +62,9 @@ static extra_opts e;
 
 static void free_lists(void)
 {
-  free(o.dilation.v);
-  free(e.stress.v);
-  free(e.kappa.v);
+  mfs_free(o.dilation.v);
+  mfs_free(e.stress.v);
+  mfs_free(e.kappa.v);
   o.dilation.v = e.stress.v = e.kappa.v = NULL;
 }
 
@@ -81,14 +82,14 @@ static void small_work(const mfs_disc *d)
     if (!isfinite(sum))
       abort(); /* a stencil that was computed is finite */
   }
-  free(s);
+  mfs_free(s);
 }
 
 int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
 {
   if (size > 4096)
     return 0;
-  char *buf = malloc(size + 1);
+  char *buf = mfs_malloc(size + 1);
   if (!buf)
     return 0;
   memcpy(buf, data, size);
@@ -122,6 +123,6 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
       small_work(&d);
   }
   free_lists();
-  free(buf);
+  mfs_free(buf);
   return 0;
 }
