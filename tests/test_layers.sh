@@ -62,5 +62,19 @@ if check "$tmp/lib" >"$tmp/out"; then
 else
   pass=$((pass + 1))
 fi
+# every allocation of the library and the tools goes through the library's
+# allocator (lib/core/mfs_alloc.h): no bare malloc, calloc, realloc, strdup or
+# free call outside mfs_alloc.c and the test allocator of tools/mfstab.c
+bare=$(grep -rnE '(^|[^[:alnum:]_.>])(malloc|calloc|realloc|strdup|free)[[:space:]]*\(' \
+         "$LIB" "$LIB/../tools" --include=*.c --include=*.h |
+       grep -v -e '/mfs_alloc\.c:' -e '/tools/mfstab\.c:' | grep -vE '^[^:]+:[0-9]+:[[:space:]]*(/?\*|//)' |
+       grep -vE '/\*.*(malloc|calloc|realloc|strdup|free)[[:space:]]*\(.*\*/' || true)
+if [ -n "$bare" ]; then
+  fail=$((fail + 1))
+  echo "FAIL: allocations outside the library's allocator (use mfs_malloc ...):"
+  echo "$bare"
+else
+  pass=$((pass + 1))
+fi
 echo "test_layers: $pass passed, $fail failed"
 [ "$fail" -eq 0 ]
