@@ -23,8 +23,8 @@ static const char about_1d[] =
   "(dim = 2, lib/time/mfs_solver2d.h) described by an INI scene file; writes CSV columns t followed\n"
   "by the probes of [output] probes.\n"
   "Sections and keys (defaults in parentheses; * required):\n"
-  "  [model]          nodes*, length* (m), periodic (0), max_entries (5e8: a larger plan is\n"
-  "                   refused), dim (1 | 2), formulation (displacement |\n"
+  "  [model]          nodes*, length* (m), periodic (0), max_entries (5e8 or what the memory\n"
+  "                   holds: a larger plan is refused), dim (1 | 2), formulation (displacement |\n"
   "                   stress_velocity: the TSPH bar of lib/time/mfs_tsph.h, schemes tsph (default),\n"
   "                   euler, rk2, rk4; [material] yield_stress, fluidity, perzyna_exponent,\n"
   "                   hardening; [discretization] interpolation (shepard | linear),\n"
@@ -235,11 +235,18 @@ mfs_integrator scene_build(scene *sc)
   mfs_disc d = sc->dim == 2 ? scene_model_spec(sc).disc : sc->spec.disc;
   double n = (double)d.source.nx * (sc->dim == 2 ? (double)sc->ny : 1.0);
   double entries = mfs_disc_plan_entries(&d, n, NULL);
-  if (!(entries <= sc->max_entries))
+  double lim = sc->max_entries > 0.0 ? sc->max_entries : CLI_MAX_ENTRIES;
+  if (!(entries <= lim))
     scene_key_error(sc, "discretization", "dilation",
                     "about %.3g neighbour entries in the plan, more than [model] max_entries = "
-                    "%.3g; lower the dilation or the nodes, or raise max_entries",
-                    entries, sc->max_entries);
+                    "%.3g%s; lower the dilation or the nodes, or raise max_entries",
+                    entries, lim, sc->max_entries > 0.0 ? "" : " (the default)");
+  double bytes = mfs_disc_model_bytes(&d, n), mem = cli_available_memory();
+  if (sc->max_entries == 0.0 && mem > 0.0 && bytes > mem)
+    scene_key_error(sc, "discretization", "dilation",
+                    "the model needs about %.3g GB, and %.3g GB of memory are available; lower "
+                    "the dilation or the nodes, or set [model] max_entries to try anyway",
+                    bytes / 1e9, mem / 1e9);
   if (sc->dim == 2) {
     mfs_model_spec ms = scene_model_spec(sc);
     in.type = &mfs_integrator_plate;

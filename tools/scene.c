@@ -495,7 +495,7 @@ static void defaults(scene *sc, const char *path)
   sc->scheme = MFS_SCHEME_LEAPFROG;
   sc->every = 1;
   sc->max_steps = 100000000; /* 10^8: a limit on the work, raised by [time] max_steps */
-  sc->max_entries = CLI_MAX_ENTRIES; /* the plan's size, raised by [model] max_entries */
+  sc->max_entries = 0.0; /* the default limit (cli_entries_limit), or [model] max_entries */
   sc->mode = 1.0;
   sc->pulse_alpha = 1.0;
   sc->yield_stress = INFINITY;

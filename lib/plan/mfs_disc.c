@@ -262,6 +262,22 @@ mfs_status mfs_disc_periodic_box(const mfs_disc *d, int nx, int ny, mfs_particle
   return build(d, &ls, p, q);
 }
 
+double mfs_disc_model_bytes(const mfs_disc *d, double n)
+{
+  double points, entries = mfs_disc_plan_entries(d, n, &points);
+  int dim = d->dim, ncomp = d->material.physics == MFS_PHYS_PLANE_STRAIN ? 2 : 1;
+  /* the plan: an index and the values and gradients per entry */
+  double plan = entries * (4.0 + 8.0 * (1 + dim));
+  /* K (and a consistent M): the particles within 2a of each, ncomp^2 each, 12 bytes a nonzero */
+  double D2 = 2.0 * d->dilation, gamma = d->source.gamma > 0.0 ? d->source.gamma : 1.0;
+  double row = dim == 1 ? 2.0 * D2 + 1.0 : M_PI * D2 * D2 / gamma + 1.0;
+  if (row > n)
+    row = n;
+  double nnz = n * ncomp * ncomp * row;
+  double mats = 12.0 * nnz * (d->consistent_mass ? 2.0 : 1.0);
+  return plan + mats + 64.0 * n * ncomp; /* and a few vectors */
+}
+
 double mfs_disc_plan_entries(const mfs_disc *d, double n, double *points)
 {
   const mfs_quad_type *t = d->quadrature;

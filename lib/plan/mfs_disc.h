@@ -122,6 +122,12 @@ double mfs_disc_rcond(const mfs_disc *d);
  * overflow for absurd inputs. */
 double mfs_disc_plan_entries(const mfs_disc *d, double n, double *points);
 
+/* An estimate of the peak memory, in bytes, of a finite model of d on n
+ * particles (its plan, its stiffness and consistent mass, a few vectors):
+ * within a factor of about 1.5 of the measured peak; for a refusal before
+ * the machine runs out of memory. */
+double mfs_disc_model_bytes(const mfs_disc *d, double n);
+
 /* The particles and quadrature points of a finite source (the lattice of
  * the box, cut as the rule needs, perturbed as the source says; or the
  * particle set, with its cells where the rule needs them:
