@@ -817,6 +817,60 @@ static void eq_constants(void)
 }
 
 /* ------------------------------------------------------------------ */
+/* The data behind the numbers docs/errata.md quotes (no rows of their  */
+/* own; tests/test_errata.py compares the quotes with these files)      */
+
+static void errata_data(void)
+{
+  /* E2: the long-wave limit omega2 / (pi kappa)^2 of eq. 74 under tension (the continuum:
+   * 1 + sbar), and the growth rates of the paper's and the consistent linearization */
+  sub(cmd_dispersion, "errata_e2_longwave.csv", "--kernel", "quartic", "--quadrature", "nodal",
+      "--frame", "eulerian", "--dilation", "1.5,2,2.5", "--stress", "0.3", "--kappa", "0.001",
+      NULL);
+  sub(cmd_dispersion, "errata_e2_eulerian.csv", "--kernel", "quartic", "--quadrature", "nodal",
+      "--frame", "eulerian", "--dilation", "1.5,2.5", "--stress", "0.1,0.5,1", "--points", "201",
+      NULL);
+  sub(cmd_dispersion, "errata_e2_consistent.csv", "--kernel", "quartic", "--quadrature", "nodal",
+      "--frame", "eulerian-consistent", "--dilation", "1.5,2.5", "--stress", "0.1,0.5,1",
+      "--points", "201", NULL);
+  /* E4: the stretched Eulerian stress-point model's long-wave limit, 1 + sbar F */
+  sub(cmd_dispersion, "errata_e4_longwave.csv", "--kernel", "cubic", "--quadrature", "stress",
+      "--frame", "eulerian", "--dilation", "2", "--stress", "0.3", "--stretch", "1.2", "--kappa",
+      "0.001", NULL);
+  /* notes: SPH is not linearly complete (cubic, D = 1.5, Lagrangian nodal) */
+  sub(cmd_dispersion, "errata_sph_longwave.csv", "--kernel", "cubic", "--shape", "sph",
+      "--quadrature", "nodal", "--dilation", "1.5", "--stress", "0,0.3", "--kappa", "0.001", NULL);
+  /* notes: the free bar's lambda_max against the lattice's Fourier maximum */
+  sub(cmd_eigs, "errata_free_bar.csv", "--kernel", "cubic", "--dilation", "2", "--quadrature",
+      "gauss2", NULL);
+  /* E3: eq. 93 as derived (paths a and b) and as printed; quartic, D = 2.5, F = 1.15 */
+  static const double kap[3] = {0.25, 0.5, 0.75};
+  double pb[3], pp[3];
+  mfs_cf_spec cs = {.disc = line_disc("stress", &mfs_kernel_quartic, 2.5, MFS_FRAME_EULERIAN),
+                    .sbar = 0.3517, .stretch = 1.15};
+  mfs_status st;
+  mfs_cf_plan *cp = mfs_cf_plan_alloc(&cs, &st);
+  if (!cp || mfs_cf_omega2(cp, MFS_CF_EULER_STRESS, 3, kap, pb) != MFS_OK ||
+      mfs_cf_omega2(cp, MFS_CF_EULER_STRESS_PRINTED, 3, kap, pp) != MFS_OK)
+    cli_die(1, "reproduce: the closed forms of eq. 93 failed");
+  mfs_cf_plan_free(cp);
+  mfs_disp_spec ds = {.disc = cs.disc, .stretch = 1.15};
+  mfs_disp_plan *dp = mfs_disp_plan_alloc(&ds, &st);
+  if (!dp)
+    cli_die(1, "reproduce: eq. 93: %s", mfs_strerror(st));
+  cli_out o;
+  cli_out_open(&o, repro_path("errata_e3.csv"));
+  fputs("kernel,dilation,stretch,sigma_norm,kappa_norm,omega2_bloch_norm,omega2_derived_norm,"
+        "omega2_printed_norm\n",
+        o.f);
+  for (int i = 0; i < 3; i++)
+    fprintf(o.f, "quartic,2.5,1.15,0.3517,%g,%.16g,%.16g,%.16g\n", kap[i],
+            omega2_at(dp, 0.3517, kap[i]), pb[i], pp[i]);
+  mfs_disp_plan_free(dp);
+  cli_out_commit(&o);
+}
+
+/* ------------------------------------------------------------------ */
 /* Paper 000, Fig. 1                                                    */
 
 /* Counts of a map CSV for one frame: grid points, PDE-stable ones, stable
@@ -935,6 +989,7 @@ int cmd_reproduce(int argc, char **argv)
   star_mass();
   figure17();
   eq_constants();
+  errata_data();
   repro_scene_rows();
   figure1_000();
   repro_static_rows();

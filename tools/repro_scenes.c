@@ -122,7 +122,7 @@ static void rod(void)
   /* Fig. 7 shows growth near the centre; the Eulerian MLS rod at D = 1.5 stays as the
    * Lagrangian one */
   double ratio = umax[0] > 0 ? umax[1] / umax[0] : NAN;
-  repro_row("003 Fig 7 max|u| Eulerian / Lagrangian at 4.3e-5 s", "> 1 (unstable)", ratio,
+  repro_row("003 Fig 7 max abs u, Eulerian / Lagrangian at 4.3e-5 s", "> 1 (unstable)", ratio,
             ratio < 1.5 && !res[1].failed ? "errata E7" : "differs", "fig07.csv");
   for (int r = 0; r < 4; r++) {
     mfs_free(ob[r].X);
@@ -206,6 +206,15 @@ static void tsph(void)
   static const char *const rk4[] = {"time.scheme=rk4", "discretization.artificial_viscosity=0",
                                     "model.nodes=100", "time.dt=2e-5",
                                     "output.probes=sigma_end,v_mid", NULL};
+  /* the variants of docs/errata.md E8 */
+  static const char *const linear0[] = {"discretization.artificial_viscosity=0",
+                                        "output.probes=sigma_end,v_mid", NULL};
+  static const char *const eq30visc[] = {"discretization.interpolation=shepard",
+                                         "output.probes=sigma_end,v_mid", NULL};
+  static const char *const paper4[] = {"discretization.interpolation=shepard",
+                                       "discretization.artificial_viscosity=0",
+                                       "discretization.dilation=4",
+                                       "output.probes=sigma_end,v_mid", NULL};
   cli_out o;
   cli_out_open(&o, repro_path("tsph_bars.csv"));
   fputs("run,scene,t_end_s,dt_s,plateau_min_norm,plateau_max_norm,peak_norm,after_unloading_norm,"
@@ -215,6 +224,9 @@ static void tsph(void)
   bar_obs se = bar("tsph-elastic-bar.ini", scene_sets, "elastic-scene", o.f);
   bar_obs p7 = bar("tsph-elastic-bar.ini", fig7, "elastic-paper-dt5e-5", o.f);
   bar_obs r4 = bar("tsph-elastic-bar.ini", rk4, "elastic-rk4-100", o.f);
+  bar("tsph-elastic-bar.ini", linear0, "elastic-linear", o.f);
+  bar("tsph-elastic-bar.ini", eq30visc, "elastic-eq30-viscosity", o.f);
+  bar("tsph-elastic-bar.ini", paper4, "elastic-paper-D4", o.f);
   bar_obs pv = bar("tsph-viscoplastic-bar.ini", paper, "viscoplastic-paper", o.f);
   bar_obs sv = bar("tsph-viscoplastic-bar.ini", scene_sets, "viscoplastic-scene", o.f);
   cli_out_commit(&o);
