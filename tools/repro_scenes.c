@@ -34,8 +34,8 @@ typedef struct {
   double v0;                /* initial centre velocity (m/s) */
   double max_vc, max_v;     /* largest |v_center|, largest particle speed */
   double t10;               /* first time the largest speed reaches 10 v0 (NAN: never) */
-  double t_snap;            /* the profile's time: the first output at or after target */
-  double target;
+  double t_snap;            /* the profile's time: the output nearest target */
+  double target, t_prev;    /* ... and the time of the profile kept in u */
   size_t n;
   double *X, *u;            /* the displacement profile at t_snap */
 } rod_obs;
@@ -47,16 +47,25 @@ static int rod_row(void *ctx, const mfs_state *s, const double *val)
   o->max_v = fmax(o->max_v, val[1]);
   if (!isfinite(o->t10) && val[1] >= 10.0 * o->v0)
     o->t10 = s->t;
-  if (!isfinite(o->t_snap) && s->t >= o->target * (1.0 - 1e-9) && s->u) {
-    o->t_snap = s->t;
+  if (!s->u || isfinite(o->t_snap))
+    return 0;
+  if (!o->X) {
     o->n = s->n;
     o->X = mfs_malloc(s->n * sizeof *o->X);
     o->u = mfs_malloc(s->n * sizeof *o->u);
     if (!o->X || !o->u)
       cli_die(1, "out of memory");
     memcpy(o->X, s->X, s->n * sizeof *o->X);
-    memcpy(o->u, s->u, s->n * sizeof *o->u);
   }
+  /* the output nearest the target: this one, or the last (kept in u) */
+  if (s->t >= o->target && o->t_prev >= 0.0 && o->target - o->t_prev < s->t - o->target) {
+    o->t_snap = o->t_prev;
+    return 0;
+  }
+  memcpy(o->u, s->u, s->n * sizeof *o->u);
+  o->t_prev = s->t;
+  if (s->t >= o->target)
+    o->t_snap = s->t;
   return 0;
 }
 
@@ -83,7 +92,8 @@ static void rod(void)
     const char *sets[] = {f, s, d, "output.every=1", "output.probes=v_center,max_v", NULL};
     scene sc;
     load(&sc, "rod-tensile.ini", sets);
-    ob[r] = (rod_obs){.v0 = sc.center_velocity, .t10 = NAN, .t_snap = NAN, .target = runs[r].snap};
+    ob[r] = (rod_obs){.v0 = sc.center_velocity, .t10 = NAN, .t_snap = NAN, .target = runs[r].snap,
+                     .t_prev = -1.0};
     res[r] = scene_run(&sc, 0, NULL, rod_row, &ob[r], 1);
     fprintf(o.f, "%s,%s,%s,%s,%.10g,%.10g,%.10g,", runs[r].name, runs[r].frame, runs[r].shape,
             runs[r].dilation, res[r].t, ob[r].max_vc, ob[r].max_v);
@@ -100,13 +110,13 @@ static void rod(void)
   cli_out_open(&p, repro_path("fig07.csv"));
   fputs("run,t_s,X_m,u_m\n", p.f);
   for (int r = 0; r < 4; r++) {
-    for (size_t i = 0; i < ob[r].n; i++)
+    for (size_t i = 0; isfinite(ob[r].t_snap) && i < ob[r].n; i++)
       fprintf(p.f, "%s,%.10g,%.10g,%.16g\n", runs[r].name, ob[r].t_snap, ob[r].X[i], ob[r].u[i]);
   }
   cli_out_commit(&p);
   double umax[4] = {0};
   for (int r = 0; r < 4; r++)
-    for (size_t i = 0; i < ob[r].n; i++)
+    for (size_t i = 0; isfinite(ob[r].t_snap) && i < ob[r].n; i++)
       umax[r] = fmax(umax[r], fabs(ob[r].u[i]));
   const char *f = "fig06_rod.csv";
   repro_row("003 Fig 6b Lagrangian MLS: max |v_center| (m/s)", "40 (bounded)", ob[0].max_vc,
