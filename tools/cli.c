@@ -465,7 +465,7 @@ const char *cli_quad_names(int dim, mfs_lattice_kind lat, char *buf, size_t len)
 /* ---- discretization options ---- */
 
 static const char *const lattice_names[] = {"line", "square", "hex", NULL};
-static const char *const mass_names[] = {"lumped", "consistent", NULL};
+static const char *const mass_names[] = {"lumped", "consistent", "volume", NULL};
 static const char *const physics_names[] = {"antiplane", "plane-strain", NULL};
 
 static const void *find_kernel(const char *n)
@@ -501,8 +501,10 @@ const cli_opt cli_disc_opts[] = {
    .help = "the quadrature rule (default nodal; docs/commands.md says which lattice "
            "each needs)",
    .offset = DOFF(quadrature), .find = find_quad, .list = (const void *const *)mfs_quad_types},
-  {.name = "--mass", .type = CLI_CHOICE, .arg = "lumped|consistent",
-   .help = "mass matrix (default lumped, row sum)", .offset = DOFF(mass), .choices = mass_names},
+  {.name = "--mass", .type = CLI_CHOICE, .arg = "lumped|consistent|volume",
+   .help = "mass matrix (default lumped, row sum, eq. 131); volume: lumped as density times the "
+           "node volume, eq. 119 (dispersion and stencil only)",
+   .offset = DOFF(mass), .choices = mass_names},
   {.name = "--modulus", .type = CLI_REAL, .arg = "C",
    .help = "tangent modulus (E in 1D, shear modulus in 2D; default 1)", .offset = DOFF(modulus),
    .bounds = CLI_GE | CLI_LE, .lo = 1e-30, .hi = 1e30},
@@ -578,6 +580,13 @@ mfs_disc cli_disc_build(const cli_disc *o, const unsigned char *seen)
   d.shape = o->shape;
   d.quadrature = o->quadrature;
   d.consistent_mass = o->mass == 1;
+  d.node_volume_mass = o->mass == 2;
+  /* the element bound, the Gershgorin rows of the checks and the solvers are
+   * written for the row sum: the node-volume mass is for the lattice analyses */
+  if (d.node_volume_mass && strcmp(cli_command, "dispersion") != 0 &&
+      strcmp(cli_command, "stencil") != 0)
+    cli_die(2, "--mass volume: only dispersion and stencil take it; allowed here: lumped, "
+               "consistent");
   d.material = (mfs_material){.physics = o->physics == 1 ? MFS_PHYS_PLANE_STRAIN : MFS_PHYS_SCALAR,
                               .modulus = o->modulus,
                               .poisson = o->poisson,

@@ -147,7 +147,7 @@ static void config(FILE *f, const mfs_disc *d, const char *latn, double dil, con
 {
   fprintf(f, "%d,%s,%s,%s,%s,%s,%s,", d->dim, latn, d->kernel->name, d->shape->name,
           d->quadrature->name, mfs_frame_name(d->frame),
-          d->consistent_mass ? "consistent" : "lumped");
+          d->consistent_mass ? "consistent" : d->node_volume_mass ? "volume" : "lumped");
   putc_num(f, dil);
   fprintf(f, "%s,%s,", physics_name(d), mat);
   int plane = d->material.physics == MFS_PHYS_PLANE_STRAIN;

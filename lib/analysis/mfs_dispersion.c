@@ -119,6 +119,8 @@ static int add_terms(mfs_disp_plan *dp, const mfs_particles *p, const mfs_row *r
     }
     if (!d->shape->partition_of_unity)
       ms = p->vol[I];
+    if (d->node_volume_mass) /* eq. 119's node volume */
+      ms = mfs_particles_node_volume(p);
     if (!d->consistent_mass) {
       disp_term *t = push_term(dp, cap);
       if (!t)
@@ -149,6 +151,8 @@ static int add_terms(mfs_disp_plan *dp, const mfs_particles *p, const mfs_row *r
   }
   if (!d->shape->partition_of_unity) /* sph: particle mass rho V (eq. 51) */
     msum[0] = msum[1] = p->vol[I];
+  if (d->node_volume_mass) /* eq. 119's node volume */
+    msum[0] = msum[1] = mfs_particles_node_volume(p);
   if (!d->consistent_mass) /* lumped: row sums on the diagonal */
     for (int a = 0; a < nd; a++) {
       disp_term *t = push_term(dp, cap);

@@ -32,6 +32,7 @@ mfs_disc mfs_disc_default(void)
                     .quadrature = &mfs_quad_nodal,
                     .frame = MFS_FRAME_LAGRANGIAN,
                     .consistent_mass = 0,
+                    .node_volume_mass = 0,
                     .material = {.physics = MFS_PHYS_SCALAR,
                                  .modulus = 1.0,
                                  .poisson = 0.25,
@@ -176,6 +177,8 @@ mfs_status mfs_disc_check(const mfs_disc *d, const char **field)
     BAD("material.initial_stress");
   if (!(d->rcond_min >= 0.0) || !(d->rcond_min < 1.0))
     BAD("rcond_min");
+  if (d->node_volume_mass && d->consistent_mass)
+    BAD("node_volume_mass");
   if (s->nx > 0 && s->periodic && !s->points) {
     /* the star pattern tiles a periodic box only with even counts */
     if (d->quadrature->cells == MFS_CELLS_STAR && d->dim == 2 && ((s->nx & 1) || (s->ny & 1)))

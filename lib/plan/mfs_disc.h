@@ -14,7 +14,8 @@
  *   shape       shape functions (mfs_shape.h)
  *   quadrature  the rule (mfs_quad.h)
  *   frame       Lagrangian or Eulerian kernel (paper 003 section 3.4)
- *   mass        lumped (row sum, eq. 131) or consistent (eq. 112)
+ *   mass        lumped (row sum, eq. 131), consistent (eq. 112), or lumped as
+ *               rho times the node volume (node_volume_mass: eq. 119's mass)
  *   material    physics and elastic constants (mfs_material.h)
  *
  * Fill it with designated initializers, starting from mfs_disc_default().
@@ -72,6 +73,8 @@ typedef struct {
   const mfs_quad_type *quadrature;
   mfs_frame frame;
   int consistent_mass;             /* 0: lumped (row sum, eq. 131) */
+  int node_volume_mass;            /* lumped as rho times the node volume (eq. 119's mass)
+                                      instead of the row sum; not with consistent_mass */
   mfs_material material;
   double rcond_min;                /* singular moment matrix threshold (0: 1e-12) */
 } mfs_disc;
