@@ -13,6 +13,9 @@
 
 #define P4(i, j, k, l) ((((i)*2 + (j)) * 2 + (k)) * 2 + (l))
 
+/* Raw components of the folded sums: at most 2 x 2 blocks of 9. */
+enum { MFS_DISP_NC = 36 };
+
 typedef struct {
   int row, col;  /* branch indices: unit-cell particle * ndof + dof (plane: the particles) */
   double d[2];   /* x_K - x_I */
@@ -30,9 +33,22 @@ struct mfs_disp_plan {
   mfs_plane_state st0;  /* that state */
   double R[2][2];  /* primitive translations of the unit cell */
   double a1[2], a2[2];
-  int mij;         /* plane strain: the largest |i|, |j| of the terms' offsets */
+  int mij;         /* the largest |i|, |j| of the terms' offsets */
   size_t nterm;
   disp_term *t;
+  /* The lattice sums folded over pairs of opposite offsets (fold_build), for
+   * the evaluators: the raw values of every block (row, col) of particles,
+   * nraw per block (scalar: A, G, M; plane strain: A^{jl}, G^{jk}, M), nc in
+   * all; their sums over all terms (k = 0), and per offset of the half plane
+   * their symmetric and antisymmetric parts, kept for the components that
+   * are not zero everywhere. */
+  int nraw, nc;
+  double c0[MFS_DISP_NC], corig[MFS_DISP_NC]; /* sums over all terms, over those at d = 0 */
+  size_t no;
+  int *oi, *oj;           /* the offsets d = i a1 + j a2: i > 0, or i = 0 and j > 0 */
+  int nsym, nanti;        /* components kept */
+  int csym[MFS_DISP_NC], canti[MFS_DISP_NC];
+  double *sym, *anti;     /* no x nsym, no x nanti */
 };
 
 static const char *const support_names[] = {"volume", "reference"};
@@ -57,6 +73,10 @@ void mfs_disp_plan_free(mfs_disp_plan *pl)
   if (!pl)
     return;
   mfs_free(pl->t);
+  mfs_free(pl->oi);
+  mfs_free(pl->oj);
+  mfs_free(pl->sym);
+  mfs_free(pl->anti);
   mfs_free(pl);
 }
 
@@ -157,6 +177,128 @@ static int add_terms(mfs_disp_plan *dp, const mfs_particles *p, const mfs_row *r
       *t = (disp_term){.row = cls * nd + a, .col = cls * nd + a, .M = msum[a]};
     }
   return MFS_OK;
+}
+
+/* The raw values of term t (scalar: A, G, M; plane strain: A^{jl}, G^{jk}, M). */
+static void term_raw(const mfs_disp_plan *dp, const disp_term *t, double *r)
+{
+  if (dp->plane) {
+    memcpy(r, t->A2, 4 * sizeof *r);
+    memcpy(r + 4, t->G2, 4 * sizeof *r);
+    r[8] = t->M;
+  } else {
+    r[0] = t->A;
+    r[1] = t->G;
+    r[2] = t->M;
+  }
+}
+
+typedef struct {
+  int i, j, sign; /* the offset in the half plane, and +1 or -1 for the term's own */
+  size_t t;
+} fold_key;
+
+static int cmp_key(const void *a, const void *b)
+{
+  const fold_key *x = a, *y = b;
+  if (x->i != y->i)
+    return (x->i > y->i) - (x->i < y->i);
+  if (x->j != y->j)
+    return (x->j > y->j) - (x->j < y->j);
+  return (x->t > y->t) - (x->t < y->t);
+}
+
+/* Fold the terms over pairs of opposite offsets:
+ *   sum_t c_t e^{ik.d_t} = c(0) + sum_o (c_o + c_-o) cos k.d_o + i sum_o (c_o - c_-o) sin k.d_o
+ *                        = sum_t c_t - sum_o (c_o + c_-o) (1 - cos k.d_o) + i ...
+ * over the offsets o of the half plane (c_o the value at d_o, c_-o at -d_o,
+ * c(0) at d = 0).  Long waves take the second form: the versine keeps them
+ * exact to rounding, where cosines near 1 would cancel against c(0) (the
+ * stiffness has sum_t c_t ~ 0, a rigid translation); shorter ones the first,
+ * whose cosines carry half the rounding of a versine near 2. */
+static mfs_status fold_build(mfs_disp_plan *dp)
+{
+  dp->nraw = dp->plane ? 9 : 3;
+  dp->nc = dp->nb * dp->nb * dp->nraw;
+  mfs_status st = MFS_ENOMEM;
+  fold_key *key = mfs_malloc((dp->nterm + 1) * sizeof *key);
+  double *pm = NULL; /* per offset: the c_o (nc) then the c_-o (nc) */
+  if (!key)
+    goto done;
+  size_t nk = 0;
+  memset(dp->c0, 0, sizeof dp->c0);
+  memset(dp->corig, 0, sizeof dp->corig);
+  for (size_t t = 0; t < dp->nterm; t++) {
+    const disp_term *tt = dp->t + t;
+    double r[9];
+    term_raw(dp, tt, r);
+    int blk = (tt->row * dp->nb + tt->col) * dp->nraw;
+    for (int q = 0; q < dp->nraw; q++)
+      dp->c0[blk + q] += r[q];
+    int i = tt->ij[0], j = tt->ij[1];
+    if (i == 0 && j == 0) {
+      for (int q = 0; q < dp->nraw; q++)
+        dp->corig[blk + q] += r[q];
+      continue;
+    }
+    int pos = i > 0 || (i == 0 && j > 0);
+    key[nk++] = (fold_key){.i = pos ? i : -i, .j = pos ? j : -j, .sign = pos ? 1 : -1, .t = t};
+  }
+  qsort(key, nk, sizeof *key, cmp_key);
+  size_t no = 0;
+  for (size_t q = 0; q < nk; q++)
+    no += q == 0 || key[q].i != key[q - 1].i || key[q].j != key[q - 1].j;
+  const int nc = dp->nc;
+  dp->no = no;
+  dp->oi = mfs_malloc((no + 1) * sizeof *dp->oi);
+  dp->oj = mfs_malloc((no + 1) * sizeof *dp->oj);
+  pm = mfs_calloc(2 * (no + 1) * (size_t)nc, sizeof *pm);
+  if (!dp->oi || !dp->oj || !pm)
+    goto done;
+  size_t o = 0;
+  for (size_t q = 0; q < nk; q++) {
+    if (q > 0 && (key[q].i != key[q - 1].i || key[q].j != key[q - 1].j))
+      o++;
+    dp->oi[o] = key[q].i;
+    dp->oj[o] = key[q].j;
+    const disp_term *tt = dp->t + key[q].t;
+    double r[9];
+    term_raw(dp, tt, r);
+    double *c = pm + (2 * o + (key[q].sign > 0 ? 0 : 1)) * (size_t)nc +
+                (size_t)((tt->row * dp->nb + tt->col) * dp->nraw);
+    for (int k = 0; k < dp->nraw; k++)
+      c[k] += r[k];
+  }
+  /* keep the components that are not zero at every offset */
+  dp->nsym = dp->nanti = 0;
+  for (int c = 0; c < nc; c++) {
+    int s = 0, a = 0;
+    for (o = 0; o < no; o++) {
+      double p = pm[2 * o * (size_t)nc + c], m = pm[(2 * o + 1) * (size_t)nc + c];
+      s |= p + m != 0.0;
+      a |= p - m != 0.0;
+    }
+    if (s)
+      dp->csym[dp->nsym++] = c;
+    if (a)
+      dp->canti[dp->nanti++] = c;
+  }
+  dp->sym = mfs_malloc((no * (size_t)dp->nsym + 1) * sizeof *dp->sym);
+  dp->anti = mfs_malloc((no * (size_t)dp->nanti + 1) * sizeof *dp->anti);
+  if (!dp->sym || !dp->anti)
+    goto done;
+  for (o = 0; o < no; o++) {
+    const double *p = pm + 2 * o * (size_t)nc, *m = p + nc;
+    for (int c = 0; c < dp->nsym; c++)
+      dp->sym[o * (size_t)dp->nsym + c] = p[dp->csym[c]] + m[dp->csym[c]];
+    for (int c = 0; c < dp->nanti; c++)
+      dp->anti[o * (size_t)dp->nanti + c] = p[dp->canti[c]] - m[dp->canti[c]];
+  }
+  st = MFS_OK;
+done:
+  mfs_free(key);
+  mfs_free(pm);
+  return st;
 }
 
 /* MFS_OK or MFS_ENOTSUP for what the analysis does not cover. */
@@ -352,18 +494,21 @@ mfs_disp_plan *mfs_disp_plan_alloc(const mfs_disp_spec *s, mfs_status *status)
     if ((st = add_terms(dp, p, &r, I, &cap, mscale)) != MFS_OK)
       goto done;
   }
-  if (dp->plane) { /* the lattice coordinates of every offset, for the phase tables */
+  { /* the lattice coordinates of every offset, for the phase tables */
     double det = dp->a1[0] * dp->a2[1] - dp->a1[1] * dp->a2[0];
     for (size_t i = 0; i < dp->nterm; i++) {
       disp_term *t = dp->t + i;
-      double u = (t->d[0] * dp->a2[1] - t->d[1] * dp->a2[0]) / det;
-      double v = (dp->a1[0] * t->d[1] - dp->a1[1] * t->d[0]) / det;
+      double u = d.dim == 1 ? t->d[0] / dp->a1[0]
+                            : (t->d[0] * dp->a2[1] - t->d[1] * dp->a2[0]) / det;
+      double v = d.dim == 1 ? 0.0 : (dp->a1[0] * t->d[1] - dp->a1[1] * t->d[0]) / det;
       t->ij[0] = (int)lround(u);
       t->ij[1] = (int)lround(v);
       int m = abs(t->ij[0]) > abs(t->ij[1]) ? abs(t->ij[0]) : abs(t->ij[1]);
       dp->mij = m > dp->mij ? m : dp->mij;
     }
   }
+  if ((st = fold_build(dp)) != MFS_OK)
+    goto done;
   st = MFS_OK;
 done:
   mfs_row_free(&r);
@@ -393,18 +538,19 @@ mfs_status mfs_disp_state(const mfs_disp_plan *dp, double sbar, mfs_plane_state 
                                 dp->spec.stress_xy, s);
 }
 
-/* The lattice sums of the plane-strain terms at k: per branch pair (row,
- * col) of particles, SA[.][4] = sum A^{jl} e^{ik.d}, SG likewise, SM the mass. */
+/* The lattice sums of the raw components at one wave vector: s[(row nb +
+ * col) nraw + q] (plane strain: q < 4 A^{jl}, q < 8 G^{jk}, q = 8 the mass). */
 typedef struct {
-  double complex SA[2][2][4], SG[2][2][4], SM[2][2];
-} plane_sums;
+  double complex s[MFS_DISP_NC];
+} raw_sums;
 
 enum { MAX_MIJ = 256 };
 
-static void plane_sum(const mfs_disp_plan *dp, const double *k, plane_sums *ps)
+/* The direct sums, term by term (the reference for the folded sums): e^{ik.d}
+ * = e^{i i k.a1} e^{i j k.a2} from tables of powers, sincos of each power. */
+static void plane_sum(const mfs_disp_plan *dp, const double *k, raw_sums *ps)
 {
   memset(ps, 0, sizeof *ps);
-  /* e^{ik.d} = e^{i i k.a1} e^{i j k.a2} from tables of powers (no sincos per term) */
   int M = dp->mij < MAX_MIJ ? dp->mij : MAX_MIJ;
   double complex p1[2 * MAX_MIJ + 1], p2[2 * MAX_MIJ + 1];
   double ph1 = k[0] * dp->a1[0] + k[1] * dp->a1[1], ph2 = k[0] * dp->a2[0] + k[1] * dp->a2[1];
@@ -424,26 +570,26 @@ static void plane_sum(const mfs_disp_plan *dp, const double *k, plane_sums *ps)
       double ph = k[0] * t->d[0] + k[1] * t->d[1];
       e = cos(ph) + _Complex_I * sin(ph);
     }
-    double complex *sa = ps->SA[t->row][t->col], *sg = ps->SG[t->row][t->col];
+    double complex *s = ps->s + (t->row * dp->nb + t->col) * 9;
     for (int q = 0; q < 4; q++)
-      sa[q] += t->A2[q] * e;
+      s[q] += t->A2[q] * e;
     if (dp->euler2)
       for (int q = 0; q < 4; q++)
-        sg[q] += t->G2[q] * e;
-    ps->SM[t->row][t->col] += t->M * e;
+        s[4 + q] += t->G2[q] * e;
+    s[8] += t->M * e;
   }
 }
 
 /* K and M (nbr x nbr) of a state from the sums: Lagrangian K_ik = A_ijkl SA^{jl};
  * Eulerian K_ik = a_ijkl SA^{jl} + sigma_im SA^{km} + sigma_ij SG^{jk} (eq. C6). */
-static void plane_contract(const mfs_disp_plan *dp, const plane_sums *ps, const mfs_plane_state *st,
+static void plane_contract(const mfs_disp_plan *dp, const raw_sums *ps, const mfs_plane_state *st,
                            double complex *K, double complex *M)
 {
   const int n = dp->nbr;
   const double *t = dp->euler2 ? st->a : st->A, *sg = st->sigma;
   for (int rb = 0; rb < dp->nb; rb++)
     for (int cb = 0; cb < dp->nb; cb++) {
-      const double complex *A = ps->SA[rb][cb], *G = ps->SG[rb][cb];
+      const double complex *A = ps->s + (rb * dp->nb + cb) * 9, *G = A + 4;
       for (int i = 0; i < 2; i++)
         for (int k = 0; k < 2; k++) {
           double complex v = 0.0;
@@ -454,9 +600,38 @@ static void plane_contract(const mfs_disp_plan *dp, const plane_sums *ps, const 
             for (int m = 0; m < 2; m++)
               v += sg[i * 2 + m] * A[k * 2 + m] + sg[i * 2 + m] * G[m * 2 + k];
           K[(rb * 2 + i) * n + cb * 2 + k] = v;
-          M[(rb * 2 + i) * n + cb * 2 + k] = i == k ? ps->SM[rb][cb] : 0.0;
+          M[(rb * 2 + i) * n + cb * 2 + k] = i == k ? A[8] : 0.0;
         }
     }
+}
+
+/* The scalar operator's coefficients at stress sbar: K = ca A + cg G. */
+static void scalar_coef(const mfs_disp_plan *dp, double sbar, double *ca, double *cg)
+{
+  const mfs_disc *s = &dp->spec.disc;
+  double F = dp->spec.stretch > 0.0 ? dp->spec.stretch : 1.0;
+  if (s->dim == 1 && s->frame != MFS_FRAME_LAGRANGIAN) {
+    *ca = 1.0 + 2.0 * sbar; /* C~ + sigma, eq. 75 */
+    *cg = sbar;
+  } else if (s->dim == 1) {
+    *ca = F * F + sbar; /* C-bar = C F^2 + S, eq. 81 */
+    *cg = 0.0;
+  } else {
+    *ca = 1.0 + sbar;
+    *cg = 0.0;
+  }
+}
+
+/* K and M (nbr x nbr) of the scalar operator from the sums. */
+static void scalar_contract(const mfs_disp_plan *dp, const raw_sums *ps, double ca, double cg,
+                            double complex *K, double complex *M)
+{
+  const int nb = dp->nb;
+  for (int b = 0; b < nb * nb; b++) {
+    const double complex *s = ps->s + b * 3;
+    K[b] = CMPLX(ca * creal(s[0]) + cg * creal(s[1]), ca * cimag(s[0]) + cg * cimag(s[1]));
+    M[b] = s[2];
+  }
 }
 
 static int same_stretch(const mfs_disp_plan *dp, const mfs_plane_state *s)
@@ -470,7 +645,7 @@ mfs_status mfs_disp_symbols_state(const mfs_disp_plan *dp, const mfs_plane_state
 {
   if (!dp->plane || !s || !same_stretch(dp, s))
     return MFS_EINVAL;
-  plane_sums ps;
+  raw_sums ps;
   plane_sum(dp, k, &ps);
   plane_contract(dp, &ps, s, K, M);
   return MFS_OK;
@@ -479,26 +654,15 @@ mfs_status mfs_disp_symbols_state(const mfs_disp_plan *dp, const mfs_plane_state
 mfs_status mfs_disp_symbols(const mfs_disp_plan *dp, double sbar, const double *k,
                             double complex *K, double complex *M)
 {
-  const mfs_disp_spec *sp = &dp->spec;
-  const mfs_disc *s = &sp->disc;
+  const mfs_disc *s = &dp->spec.disc;
   int n = dp->nbr;
   if (dp->plane) {
     mfs_plane_state st;
     mfs_status e = mfs_disp_state(dp, sbar, &st);
     return e != MFS_OK ? e : mfs_disp_symbols_state(dp, &st, k, K, M);
   }
-  double F = sp->stretch > 0.0 ? sp->stretch : 1.0;
   double ca, cg;
-  if (s->dim == 1 && s->frame != MFS_FRAME_LAGRANGIAN) {
-    ca = 1.0 + 2.0 * sbar; /* C~ + sigma, eq. 75 */
-    cg = sbar;
-  } else if (s->dim == 1) {
-    ca = F * F + sbar; /* C-bar = C F^2 + S, eq. 81 */
-    cg = 0.0;
-  } else {
-    ca = 1.0 + sbar;
-    cg = 0.0;
-  }
+  scalar_coef(dp, sbar, &ca, &cg);
   for (int i = 0; i < n * n; i++)
     K[i] = M[i] = 0.0;
   for (size_t i = 0; i < dp->nterm; i++) {
@@ -599,26 +763,261 @@ static int hermitian(const mfs_disp_plan *dp)
   return herm && dp->spec.ls_beta == 0.0;
 }
 
+/* cos x, 1 - cos x and sin x, each to about an ulp absolute and the versine,
+ * near x = 0, also relative (1 - cos x computed as such loses it): x reduced
+ * to |r| <= pi/4 by n = nearest(x 2/pi) with pi/2 in two parts (fdlibm's
+ * split: the first 33 bits, so that n pi/2 is exact for |n| < 2^20, then the
+ * rest), Taylor series of sin r and 1 - cos r to r^17 and r^18 (the next
+ * terms are below 1e-19 at pi/4), then the quadrant.  libm beyond |x| = 1e5
+ * (far outside the Brillouin zone). */
+static inline void sincos_v(double x, double *c, double *v, double *s)
+{
+  if (!(fabs(x) < 1e5)) {
+    *s = sin(x);
+    *c = cos(x);
+    *v = 1.0 - *c;
+    return;
+  }
+  static const double two_pi = 6.36619772367581382433e-01, /* 2 / pi */
+    pio2_1 = 1.57079632673412561417e+00,                   /* first 33 bits of pi / 2 */
+    pio2_1t = 6.07710050650619224932e-11,                  /* pi / 2 - pio2_1 */
+    shift = 6755399441055744.0;                            /* 1.5 * 2^52: rounds to an integer */
+  double n = (x * two_pi + shift) - shift;
+  double r = (x - n * pio2_1) - n * pio2_1t, z = r * r;
+  double sr = r + r * z * (-1.0 / 6 + z * (1.0 / 120 + z * (-1.0 / 5040 + z * (1.0 / 362880 +
+              z * (-1.0 / 39916800 + z * (1.0 / 6227020800 + z * (-1.0 / 1307674368000 +
+              z * (1.0 / 355687428096000))))))));
+  double vr = z * (0.5 + z * (-1.0 / 24 + z * (1.0 / 720 + z * (-1.0 / 40320 + z * (1.0 / 3628800 +
+              z * (-1.0 / 479001600 + z * (1.0 / 87178291200 + z * (-1.0 / 20922789888000 +
+              z * (1.0 / 6402373705728000)))))))));
+  switch ((long)n & 3) {
+  case 0:
+    *c = 1.0 - vr;
+    *v = vr;
+    *s = sr;
+    break;
+  case 1: /* cos x = -sin r, sin x = cos r */
+    *c = -sr;
+    *v = 1.0 + sr;
+    *s = 1.0 - vr;
+    break;
+  case 2:
+    *c = vr - 1.0;
+    *v = 2.0 - vr;
+    *s = -sr;
+    break;
+  default: /* cos x = sin r, sin x = -cos r */
+    *c = sr;
+    *v = 1.0 - sr;
+    *s = vr - 1.0;
+  }
+}
+
+/* x[m] = 1 - cos(m ph) (vers) or cos(m ph), s[m] = sin(m ph), m = 0 .. mmax,
+ * by the addition theorem (the versine form has no cancellation for small
+ * ph), restarted from sincos_v every 8 steps so that rounding does not grow
+ * with m. */
+static void phase_table(double ph, int mmax, int vers, double *x, double *s)
+{
+  x[0] = vers ? 0.0 : 1.0;
+  s[0] = 0.0;
+  if (mmax < 1)
+    return;
+  double c1, v1, s1;
+  sincos_v(ph, &c1, &v1, &s1);
+  x[1] = vers ? v1 : c1;
+  s[1] = s1;
+  for (int m = 2; m <= mmax; m++) {
+    if ((m & 7) == 0) {
+      double c, v;
+      sincos_v(m * ph, &c, &v, s + m);
+      x[m] = vers ? v : c;
+      continue;
+    }
+    double a = x[m - 1], b = s[m - 1];
+    if (vers) {
+      x[m] = (a + v1) - (a * v1 - b * s1);
+      s[m] = (b + s1) - (b * v1 + a * s1);
+    } else {
+      x[m] = a * c1 - b * s1;
+      s[m] = b * c1 + a * s1;
+    }
+  }
+}
+
+enum { FOLD_TAB = 64 }; /* phase tables on the stack up to |m| = 64; beyond, a sincos per offset */
+
+/* The folded sums at the wave vector of phases ph1 = k.a1, ph2 = k.a2 (1D:
+ * ph2 = 0): ps->s[c] for every raw component c (imaginary parts only if
+ * want_im).  The versine form where every phase of the terms is within
+ * pi/2 (long waves), the cosine form elsewhere.  Reads the plan only; no
+ * allocation. */
+static void fold_eval(const mfs_disp_plan *dp, double ph1, double ph2, int want_im, raw_sums *ps)
+{
+  double x1[FOLD_TAB + 1], s1[FOLD_TAB + 1], x2[2 * FOLD_TAB + 1], s2[2 * FOLD_TAB + 1];
+  double accs[MFS_DISP_NC], acca[MFS_DISP_NC];
+  const int two = dp->spec.disc.dim > 1, m = dp->mij < FOLD_TAB ? dp->mij : FOLD_TAB;
+  const int ns = dp->nsym, na = want_im ? dp->nanti : 0;
+  const int vers = dp->mij * (fabs(ph1) + fabs(ph2)) <= M_PI_2;
+  phase_table(ph1, m, vers, x1, s1);
+  if (two) {
+    phase_table(ph2, m, vers, x2 + FOLD_TAB, s2 + FOLD_TAB);
+    for (int q = 1; q <= m; q++) {
+      x2[FOLD_TAB - q] = x2[FOLD_TAB + q];
+      s2[FOLD_TAB - q] = -s2[FOLD_TAB + q];
+    }
+  }
+  for (int c = 0; c < ns; c++)
+    accs[c] = 0.0;
+  for (int c = 0; c < na; c++)
+    acca[c] = 0.0;
+  const double *sy = dp->sym, *an = dp->anti;
+  for (size_t o = 0; o < dp->no; o++, sy += ns, an += dp->nanti) {
+    const int i = dp->oi[o], j = dp->oj[o];
+    double X, S;
+    if (i > m || j > m || j < -m) {
+      double c, v;
+      sincos_v(i * ph1 + j * ph2, &c, &v, &S);
+      X = vers ? v : c;
+    } else if (!two) {
+      X = x1[i];
+      S = s1[i];
+    } else { /* the angle sum i ph1 + j ph2 */
+      double a = x1[i], sa = s1[i], b = x2[FOLD_TAB + j], sb = s2[FOLD_TAB + j];
+      if (vers) {
+        X = (a + b) - (a * b - sa * sb);
+        S = (sa + sb) - (sa * b + a * sb);
+      } else {
+        X = a * b - sa * sb;
+        S = sa * b + a * sb;
+      }
+    }
+    for (int c = 0; c < ns; c++)
+      accs[c] += sy[c] * X;
+    for (int c = 0; c < na; c++)
+      acca[c] += an[c] * S;
+  }
+  const double *base = vers ? dp->c0 : dp->corig;
+  for (int c = 0; c < dp->nc; c++)
+    ps->s[c] = base[c];
+  for (int c = 0; c < ns; c++) {
+    int k = dp->csym[c];
+    ps->s[k] = vers ? base[k] - accs[c] : base[k] + accs[c];
+  }
+  for (int c = 0; c < na; c++)
+    ps->s[dp->canti[c]] = CMPLX(creal(ps->s[dp->canti[c]]), acca[c]);
+}
+
+/* The phases k.a1, k.a2 of a wave vector k (1/dx). */
+static void phases(const mfs_disp_plan *dp, const double *k, double *ph1, double *ph2)
+{
+  if (dp->spec.disc.dim == 1) {
+    *ph1 = k[0] * dp->a1[0];
+    *ph2 = 0.0;
+    return;
+  }
+  *ph1 = k[0] * dp->a1[0] + k[1] * dp->a1[1];
+  *ph2 = k[0] * dp->a2[0] + k[1] * dp->a2[1];
+}
+
+/* What one stress needs: the scalar coefficients, or the plane-strain state. */
+typedef struct {
+  double ca, cg;
+  mfs_plane_state ps;
+} disp_stress;
+
+static mfs_status stress_at(const mfs_disp_plan *dp, double sbar, disp_stress *s)
+{
+  if (dp->plane)
+    return mfs_disp_state(dp, sbar, &s->ps);
+  scalar_coef(dp, sbar, &s->ca, &s->cg);
+  return MFS_OK;
+}
+
+/* omega^2 from the sums at one stress. */
+static mfs_status solve_at(const mfs_disp_plan *dp, const raw_sums *ps, const disp_stress *s,
+                           int herm, double complex *omega2)
+{
+  double complex K[16], M[16];
+  if (dp->plane)
+    plane_contract(dp, ps, &s->ps, K, M);
+  else
+    scalar_contract(dp, ps, s->ca, s->cg, K, M);
+  return eig_solve(dp->nbr, K, M, herm, omega2);
+}
+
+/* Imaginary parts are needed unless the problem is one Hermitian branch. */
+static int want_im(const mfs_disp_plan *dp)
+{
+  return !(hermitian(dp) && dp->nbr == 1);
+}
+
 mfs_status mfs_disp_omega2_state(const mfs_disp_plan *dp, const mfs_plane_state *s,
                                  const double *k, double complex *omega2)
 {
+  if (!dp->plane || !s || !same_stretch(dp, s))
+    return MFS_EINVAL;
+  double ph1, ph2;
+  phases(dp, k, &ph1, &ph2);
+  raw_sums ps;
+  fold_eval(dp, ph1, ph2, want_im(dp), &ps);
   double complex K[16], M[16];
-  mfs_status st = mfs_disp_symbols_state(dp, s, k, K, M);
-  return st != MFS_OK ? st : eig_solve(dp->nbr, K, M, hermitian(dp), omega2);
+  plane_contract(dp, &ps, s, K, M);
+  return eig_solve(dp->nbr, K, M, hermitian(dp), omega2);
+}
+
+/* The wave vector kappa pi (cos theta, sin theta) of a ray (1D: kappa pi). */
+static void ray_k(const mfs_disp_plan *dp, double kappa, double c, double s, double *k)
+{
+  if (dp->spec.disc.dim == 1) {
+    k[0] = kappa * M_PI;
+    k[1] = 0.0;
+  } else {
+    k[0] = kappa * M_PI * c;
+    k[1] = kappa * M_PI * s;
+  }
 }
 
 mfs_status mfs_disp_omega2(const mfs_disp_plan *dp, double sbar, double kappa, double theta,
                            double complex *omega2)
 {
-  int n = dp->nbr;
-  double k[2] = {kappa * M_PI * cos(theta), kappa * M_PI * sin(theta)};
-  if (dp->spec.disc.dim == 1)
-    k[0] = kappa * M_PI, k[1] = 0.0;
-  double complex K[16], M[16];
-  mfs_status st = mfs_disp_symbols(dp, sbar, k, K, M);
-  if (st != MFS_OK)
-    return st;
-  return eig_solve(n, K, M, hermitian(dp), omega2);
+  return mfs_disp_ray(dp, &sbar, 1, theta, &kappa, 1, omega2);
+}
+
+enum { RAY_STRESSES = 16 }; /* stresses per pass over a ray */
+
+mfs_status mfs_disp_ray(const mfs_disp_plan *dp, const double *sbar, size_t nsbar, double theta,
+                        const double *kappa, size_t n, double complex *omega2)
+{
+  const int nb = dp->nbr, herm = hermitian(dp), im = want_im(dp);
+  const double c = cos(theta), s = sin(theta);
+  mfs_status first = MFS_OK;
+  for (size_t s0 = 0; s0 < nsbar; s0 += RAY_STRESSES) {
+    size_t ns = nsbar - s0 < RAY_STRESSES ? nsbar - s0 : RAY_STRESSES;
+    disp_stress at[RAY_STRESSES];
+    for (size_t q = 0; q < ns; q++) {
+      mfs_status e = stress_at(dp, sbar[s0 + q], at + q);
+      if (e != MFS_OK)
+        return e;
+    }
+    for (size_t i = 0; i < n; i++) {
+      double k[2], ph1, ph2;
+      ray_k(dp, kappa[i], c, s, k);
+      phases(dp, k, &ph1, &ph2);
+      raw_sums ps;
+      fold_eval(dp, ph1, ph2, im, &ps);
+      for (size_t q = 0; q < ns; q++) {
+        double complex *w = omega2 + ((s0 + q) * n + i) * (size_t)nb;
+        mfs_status e = solve_at(dp, &ps, at + q, herm, w);
+        if (e != MFS_OK) {
+          for (int b = 0; b < nb; b++)
+            w[b] = CMPLX(NAN, NAN);
+          first = first == MFS_OK ? e : first;
+        }
+      }
+    }
+  }
+  return first;
 }
 
 mfs_status mfs_disp_longwave(const mfs_disp_plan *dp, double sbar, double theta, double *q)
@@ -668,7 +1067,7 @@ void mfs_disp_current_k(const mfs_disp_plan *dp, const double *k, double *kc)
 struct mfs_disp_sample {
   const mfs_disp_plan *pl;
   size_t nk;
-  plane_sums *s;
+  raw_sums *s;
 };
 
 mfs_disp_sample *mfs_disp_sample_alloc(const mfs_disp_plan *pl, size_t nk, const double *k,
@@ -684,8 +1083,11 @@ mfs_disp_sample *mfs_disp_sample_alloc(const mfs_disp_plan *pl, size_t nk, const
     goto done;
   s->pl = pl;
   s->nk = nk;
-  for (size_t i = 0; i < nk; i++)
-    plane_sum(pl, k + 2 * i, s->s + i);
+  for (size_t i = 0; i < nk; i++) { /* the folded sums, as mfs_disp_omega2_state */
+    double ph1, ph2;
+    phases(pl, k + 2 * i, &ph1, &ph2);
+    fold_eval(pl, ph1, ph2, want_im(pl), s->s + i);
+  }
   st = MFS_OK;
 done:
   if (st != MFS_OK) {

@@ -111,11 +111,31 @@ int mfs_disp_is_reciprocal(const mfs_disp_plan *pl, const double *k, double tol)
  * symmetric operators (Lagrangian) and may be complex otherwise.  With a
  * finite material the state is the plan's and sbar must be 0.
  * Returns MFS_OK, MFS_ELAPACK, MFS_EINVAL (sbar with a finite material), or
- * MFS_EDOMAIN if the mass symbol is singular. */
+ * MFS_EDOMAIN if the mass symbol is singular (omega2 is then NaN).
+ * How: the plan keeps the lattice sums folded over pairs of opposite offsets
+ * d = i a1 + j a2, sum_t c_t e^{ik.d_t} = sum_t c_t - sum_o (c_o + c_-o)
+ * (1 - cos k.d_o) + i sum_o (c_o - c_-o) sin k.d_o, with 1 - cos(m k.a) and
+ * sin(m k.a) from tables built by the addition theorem per wave vector; the
+ * 1 x 1 and lumped 2 x 2 eigenproblems in closed form. */
 mfs_status mfs_disp_omega2(const mfs_disp_plan *pl, double sbar, double kappa, double theta,
                            double _Complex *omega2);
 
-/* Symbols at one wave vector, for checks: K(k) and M(k), nb x nb row-major. */
+/* omega^2 along a ray: at the wave numbers kappa[0..n) (kappa dx / pi) in
+ * direction theta and each stress sbar[0..nsbar), into omega2[(s n + i) nb
+ * + b] (nb = mfs_disp_branches), the same values as mfs_disp_omega2 point by
+ * point, bit for bit; the lattice sums of a wave vector serve all the
+ * stresses.  Every point is computed on its own from the plan (which is only
+ * read; nothing is allocated), so calls may run in parallel on one plan and
+ * a ray split into pieces gives the same bits.  MFS_OK, or the status of the
+ * first failing point (MFS_EDOMAIN, MFS_ELAPACK: its values are NaN, the
+ * other points are computed) or of a stress (MFS_EINVAL, as mfs_disp_omega2:
+ * nothing computed). */
+mfs_status mfs_disp_ray(const mfs_disp_plan *pl, const double *sbar, size_t nsbar, double theta,
+                        const double *kappa, size_t n, double _Complex *omega2);
+
+/* Symbols at one wave vector, for checks: K(k) and M(k), nb x nb row-major,
+ * summed term by term with a sincos per lattice offset (the reference the
+ * folded sums of mfs_disp_omega2 are tested against). */
 mfs_status mfs_disp_symbols(const mfs_disp_plan *pl, double sbar, const double *k,
                             double _Complex *K, double _Complex *M);
 
