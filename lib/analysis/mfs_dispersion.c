@@ -681,18 +681,28 @@ static int cmp_re(const void *a, const void *b)
   return (x > y) - (x < y);
 }
 
+/* omega^2 = K / M of one branch. */
+static inline mfs_status solve1(double complex K, double complex M, int herm, double complex *omega2)
+{
+  if (M == 0.0)
+    return MFS_EDOMAIN;
+  if (herm)
+    *omega2 = creal(K) / creal(M);
+  else if (cimag(M) == 0.0) /* a real mass (lumped): K / m without the complex division */
+    *omega2 = CMPLX(creal(K) / creal(M), cimag(K) / creal(M));
+  else
+    *omega2 = K / M;
+  return isfinite(creal(*omega2)) && isfinite(cimag(*omega2)) ? MFS_OK : MFS_EDOMAIN;
+}
+
 /* The generalized eigenvalues of K v = omega^2 M v (n x n), sorted by real
  * part; herm: K and M Hermitian.  A 2 x 2 problem with M = m I (one particle,
  * lumped mass) in closed form. */
 static mfs_status eig_solve(int n, double complex *K, double complex *M, int herm,
                             double complex *omega2)
 {
-  if (n == 1) {
-    if (cabs(M[0]) == 0.0)
-      return MFS_EDOMAIN;
-    omega2[0] = herm ? creal(K[0]) / creal(M[0]) : K[0] / M[0];
-    return isfinite(creal(omega2[0])) && isfinite(cimag(omega2[0])) ? MFS_OK : MFS_EDOMAIN;
-  }
+  if (n == 1)
+    return solve1(K[0], M[0], herm, omega2);
   if (n == 2 && M[1] == 0.0 && M[2] == 0.0 && M[0] == M[3]) {
     if (cabs(M[0]) == 0.0)
       return MFS_EDOMAIN;
@@ -763,149 +773,215 @@ static int hermitian(const mfs_disp_plan *dp)
   return herm && dp->spec.ls_beta == 0.0;
 }
 
-/* cos x, 1 - cos x and sin x, each to about an ulp absolute and the versine,
- * near x = 0, also relative (1 - cos x computed as such loses it): x reduced
- * to |r| <= pi/4 by n = nearest(x 2/pi) with pi/2 in two parts (fdlibm's
- * split: the first 33 bits, so that n pi/2 is exact for |n| < 2^20, then the
- * rest), Taylor series of sin r and 1 - cos r to r^17 and r^18 (the next
- * terms are below 1e-19 at pi/4), then the quadrant.  libm beyond |x| = 1e5
- * (far outside the Brillouin zone). */
-static inline void sincos_v(double x, double *c, double *v, double *s)
+/* Wave vectors are evaluated in blocks of up to BLK points, the innermost
+ * loops over the points of a block (which the compiler vectorizes); every
+ * operation is elementwise, so a point's value does not depend on the other
+ * points of its block. */
+enum { BLK = 8 };
+
+/* cos x, 1 - cos x and sin x of x[0..np), each to about an ulp absolute and
+ * the versine, near x = 0, also relative (1 - cos x computed as such loses
+ * it): x reduced to |r| <= pi/4 by n = nearest(x 2/pi) with pi/2 in two
+ * parts (fdlibm's split: the first 33 bits, so that n pi/2 is exact for |n| <
+ * 2^20, then the rest), Taylor series of sin r and 1 - cos r to r^17 and r^18
+ * (the next terms are below 1e-19 at pi/4), then the quadrant, without
+ * branches.  libm beyond |x| = 1e5 (far outside the Brillouin zone). */
+static void sincos_v(int np, const double *x, double *c, double *v, double *s)
 {
-  if (!(fabs(x) < 1e5)) {
-    *s = sin(x);
-    *c = cos(x);
-    *v = 1.0 - *c;
-    return;
-  }
   static const double two_pi = 6.36619772367581382433e-01, /* 2 / pi */
     pio2_1 = 1.57079632673412561417e+00,                   /* first 33 bits of pi / 2 */
     pio2_1t = 6.07710050650619224932e-11,                  /* pi / 2 - pio2_1 */
     shift = 6755399441055744.0;                            /* 1.5 * 2^52: rounds to an integer */
-  double n = (x * two_pi + shift) - shift;
-  double r = (x - n * pio2_1) - n * pio2_1t, z = r * r;
-  double sr = r + r * z * (-1.0 / 6 + z * (1.0 / 120 + z * (-1.0 / 5040 + z * (1.0 / 362880 +
-              z * (-1.0 / 39916800 + z * (1.0 / 6227020800 + z * (-1.0 / 1307674368000 +
-              z * (1.0 / 355687428096000))))))));
-  double vr = z * (0.5 + z * (-1.0 / 24 + z * (1.0 / 720 + z * (-1.0 / 40320 + z * (1.0 / 3628800 +
-              z * (-1.0 / 479001600 + z * (1.0 / 87178291200 + z * (-1.0 / 20922789888000 +
-              z * (1.0 / 6402373705728000)))))))));
-  switch ((long)n & 3) {
-  case 0:
-    *c = 1.0 - vr;
-    *v = vr;
-    *s = sr;
-    break;
-  case 1: /* cos x = -sin r, sin x = cos r */
-    *c = -sr;
-    *v = 1.0 + sr;
-    *s = 1.0 - vr;
-    break;
-  case 2:
-    *c = vr - 1.0;
-    *v = 2.0 - vr;
-    *s = -sr;
-    break;
-  default: /* cos x = sin r, sin x = -cos r */
-    *c = sr;
-    *v = 1.0 - sr;
-    *s = vr - 1.0;
+  for (int p = 0; p < np; p++) {
+    double xp = x[p]; /* |x| >= 1e5, inf, NaN: garbage here, replaced below */
+    double n = (xp * two_pi + shift) - shift;
+    double r = (xp - n * pio2_1) - n * pio2_1t, z = r * r;
+    double sr = r + r * z * (-1.0 / 6 + z * (1.0 / 120 + z * (-1.0 / 5040 + z * (1.0 / 362880 +
+                z * (-1.0 / 39916800 + z * (1.0 / 6227020800 + z * (-1.0 / 1307674368000 +
+                z * (1.0 / 355687428096000))))))));
+    double vr = z * (0.5 + z * (-1.0 / 24 + z * (1.0 / 720 + z * (-1.0 / 40320 + z * (1.0 / 3628800 +
+                z * (-1.0 / 479001600 + z * (1.0 / 87178291200 + z * (-1.0 / 20922789888000 +
+                z * (1.0 / 6402373705728000)))))))));
+    double cr = 1.0 - vr;
+    /* the quadrant q = n mod 4 as n - 4 round(n / 4), in {-2, ..., 2}:
+     * q = 0: (cos, sin) = (cr, sr); 1: (-sr, cr); +-2: (-cr, -sr); -1: (sr, -cr),
+     * chosen by products with 0 / 1 indicators, polynomials in q exact on
+     * these integers (no branch, so the loop vectorizes) */
+    double q = n - 4.0 * ((n * 0.25 + shift) - shift), q2 = q * q;
+    double e0 = 1.0 - q2 * (5.0 - q2) / 4.0, odd = q2 * (4.0 - q2) / 3.0;
+    double e2 = q2 * (q2 - 1.0) / 12.0, e1 = odd * (1.0 + q) / 2.0, em1 = odd * (1.0 - q) / 2.0;
+    double cp = odd * sr + (1.0 - odd) * cr, sp = odd * cr + (1.0 - odd) * sr;
+    double cq = cp * (1.0 - 2.0 * (e1 + e2)), sq = sp * (1.0 - 2.0 * (em1 + e2));
+    c[p] = cq;
+    s[p] = sq;
+    v[p] = e0 * vr + (1.0 - e0) * (1.0 - cq);
   }
+  for (int p = 0; p < np; p++)
+    if (!(fabs(x[p]) < 1e5)) {
+      s[p] = sin(x[p]);
+      c[p] = cos(x[p]);
+      v[p] = 1.0 - c[p];
+    }
 }
 
-/* x[m] = 1 - cos(m ph) (vers) or cos(m ph), s[m] = sin(m ph), m = 0 .. mmax,
- * by the addition theorem (the versine form has no cancellation for small
- * ph), restarted from sincos_v every 8 steps so that rounding does not grow
- * with m. */
-static void phase_table(double ph, int mmax, int vers, double *x, double *s)
+/* For the points of a block: x[m BLK + p] = 1 - cos(m ph_p) (vers) or
+ * cos(m ph_p), s[m BLK + p] = sin(m ph_p), m = 0 .. mmax, by the addition
+ * theorem (the versine form has no cancellation for small ph), restarted
+ * from sincos_v every 8 steps so that rounding does not grow with m. */
+static void phase_table(int np, const double *ph, int mmax, int vers, double *x, double *s)
 {
-  x[0] = vers ? 0.0 : 1.0;
-  s[0] = 0.0;
+  double c1[BLK], v1[BLK], s1[BLK], mp[BLK], cc[BLK], vv[BLK];
+  for (int p = 0; p < np; p++) {
+    x[p] = vers ? 0.0 : 1.0;
+    s[p] = 0.0;
+  }
   if (mmax < 1)
     return;
-  double c1, v1, s1;
-  sincos_v(ph, &c1, &v1, &s1);
-  x[1] = vers ? v1 : c1;
-  s[1] = s1;
+  sincos_v(np, ph, c1, v1, s1);
+  for (int p = 0; p < np; p++) {
+    x[BLK + p] = vers ? v1[p] : c1[p];
+    s[BLK + p] = s1[p];
+  }
   for (int m = 2; m <= mmax; m++) {
+    double *xm = x + m * BLK, *sm = s + m * BLK;
+    const double *xa = xm - BLK, *sa = sm - BLK;
     if ((m & 7) == 0) {
-      double c, v;
-      sincos_v(m * ph, &c, &v, s + m);
-      x[m] = vers ? v : c;
-      continue;
-    }
-    double a = x[m - 1], b = s[m - 1];
-    if (vers) {
-      x[m] = (a + v1) - (a * v1 - b * s1);
-      s[m] = (b + s1) - (b * v1 + a * s1);
+      for (int p = 0; p < np; p++)
+        mp[p] = m * ph[p];
+      sincos_v(np, mp, cc, vv, sm);
+      for (int p = 0; p < np; p++)
+        xm[p] = vers ? vv[p] : cc[p];
+    } else if (vers) {
+      for (int p = 0; p < np; p++) {
+        xm[p] = (xa[p] + v1[p]) - (xa[p] * v1[p] - sa[p] * s1[p]);
+        sm[p] = (sa[p] + s1[p]) - (sa[p] * v1[p] + xa[p] * s1[p]);
+      }
     } else {
-      x[m] = a * c1 - b * s1;
-      s[m] = b * c1 + a * s1;
+      for (int p = 0; p < np; p++) {
+        xm[p] = xa[p] * c1[p] - sa[p] * s1[p];
+        sm[p] = sa[p] * c1[p] + xa[p] * s1[p];
+      }
     }
   }
 }
 
 enum { FOLD_TAB = 64 }; /* phase tables on the stack up to |m| = 64; beyond, a sincos per offset */
 
-/* The folded sums at the wave vector of phases ph1 = k.a1, ph2 = k.a2 (1D:
- * ph2 = 0): ps->s[c] for every raw component c (imaginary parts only if
- * want_im).  The versine form where every phase of the terms is within
- * pi/2 (long waves), the cosine form elsewhere.  Reads the plan only; no
- * allocation. */
-static void fold_eval(const mfs_disp_plan *dp, double ph1, double ph2, int want_im, raw_sums *ps)
+/* The folded sums of a block of np wave vectors, of phases ph1 = k.a1, ph2 =
+ * k.a2 (1D: ph2 = 0), all long waves (vers: every phase of the terms within
+ * pi/2, the versine form) or none (the cosine form): re[c BLK + p] + i im[c
+ * BLK + p] for the raw components c of the plan (imaginary parts only if
+ * want_im; zero otherwise).  Reads the plan only; no allocation. */
+static void fold_block(const mfs_disp_plan *dp, int np, const double *ph1, const double *ph2,
+                       int vers, int want_im, double *re, double *im)
 {
-  double x1[FOLD_TAB + 1], s1[FOLD_TAB + 1], x2[2 * FOLD_TAB + 1], s2[2 * FOLD_TAB + 1];
-  double accs[MFS_DISP_NC], acca[MFS_DISP_NC];
+  double x1[(FOLD_TAB + 1) * BLK], s1[(FOLD_TAB + 1) * BLK];
+  double x2[(2 * FOLD_TAB + 1) * BLK], s2[(2 * FOLD_TAB + 1) * BLK];
+  double X[BLK], S[BLK], t[BLK], cc[BLK], vv[BLK];
   const int two = dp->spec.disc.dim > 1, m = dp->mij < FOLD_TAB ? dp->mij : FOLD_TAB;
   const int ns = dp->nsym, na = want_im ? dp->nanti : 0;
-  const int vers = dp->mij * (fabs(ph1) + fabs(ph2)) <= M_PI_2;
-  phase_table(ph1, m, vers, x1, s1);
+  double *accs = re, *acca = im; /* accumulated in the kept components' slots, then placed */
+  phase_table(np, ph1, m, vers, x1, s1);
   if (two) {
-    phase_table(ph2, m, vers, x2 + FOLD_TAB, s2 + FOLD_TAB);
-    for (int q = 1; q <= m; q++) {
-      x2[FOLD_TAB - q] = x2[FOLD_TAB + q];
-      s2[FOLD_TAB - q] = -s2[FOLD_TAB + q];
-    }
+    phase_table(np, ph2, m, vers, x2 + FOLD_TAB * BLK, s2 + FOLD_TAB * BLK);
+    for (int q = 1; q <= m; q++)
+      for (int p = 0; p < np; p++) {
+        x2[(FOLD_TAB - q) * BLK + p] = x2[(FOLD_TAB + q) * BLK + p];
+        s2[(FOLD_TAB - q) * BLK + p] = -s2[(FOLD_TAB + q) * BLK + p];
+      }
   }
-  for (int c = 0; c < ns; c++)
+  for (int c = 0; c < ns * BLK; c++)
     accs[c] = 0.0;
-  for (int c = 0; c < na; c++)
+  for (int c = 0; c < na * BLK; c++)
     acca[c] = 0.0;
   const double *sy = dp->sym, *an = dp->anti;
   for (size_t o = 0; o < dp->no; o++, sy += ns, an += dp->nanti) {
     const int i = dp->oi[o], j = dp->oj[o];
-    double X, S;
+    const double *Xo = X, *So = S;
     if (i > m || j > m || j < -m) {
-      double c, v;
-      sincos_v(i * ph1 + j * ph2, &c, &v, &S);
-      X = vers ? v : c;
+      for (int p = 0; p < np; p++)
+        t[p] = i * ph1[p] + j * ph2[p];
+      sincos_v(np, t, cc, vv, S);
+      for (int p = 0; p < np; p++)
+        X[p] = vers ? vv[p] : cc[p];
     } else if (!two) {
-      X = x1[i];
-      S = s1[i];
+      Xo = x1 + i * BLK;
+      So = s1 + i * BLK;
     } else { /* the angle sum i ph1 + j ph2 */
-      double a = x1[i], sa = s1[i], b = x2[FOLD_TAB + j], sb = s2[FOLD_TAB + j];
-      if (vers) {
-        X = (a + b) - (a * b - sa * sb);
-        S = (sa + sb) - (sa * b + a * sb);
-      } else {
-        X = a * b - sa * sb;
-        S = sa * b + a * sb;
-      }
+      const double *a = x1 + i * BLK, *sa = s1 + i * BLK;
+      const double *b = x2 + (FOLD_TAB + j) * BLK, *sb = s2 + (FOLD_TAB + j) * BLK;
+      if (vers)
+        for (int p = 0; p < np; p++) {
+          X[p] = (a[p] + b[p]) - (a[p] * b[p] - sa[p] * sb[p]);
+          S[p] = (sa[p] + sb[p]) - (sa[p] * b[p] + a[p] * sb[p]);
+        }
+      else
+        for (int p = 0; p < np; p++) {
+          X[p] = a[p] * b[p] - sa[p] * sb[p];
+          S[p] = sa[p] * b[p] + a[p] * sb[p];
+        }
     }
-    for (int c = 0; c < ns; c++)
-      accs[c] += sy[c] * X;
-    for (int c = 0; c < na; c++)
-      acca[c] += an[c] * S;
+    for (int c = 0; c < ns; c++) {
+      const double w = sy[c];
+      double *acc = accs + c * BLK;
+      for (int p = 0; p < np; p++)
+        acc[p] += w * Xo[p];
+    }
+    for (int c = 0; c < na; c++) {
+      const double w = an[c];
+      double *acc = acca + c * BLK;
+      for (int p = 0; p < np; p++)
+        acc[p] += w * So[p];
+    }
   }
+  /* place: Re = c0 - sum sym vers (long waves) or c(0) + sum sym cos; the
+   * kept components sit in the first ns (na) slots, moved up from the last */
   const double *base = vers ? dp->c0 : dp->corig;
-  for (int c = 0; c < dp->nc; c++)
-    ps->s[c] = base[c];
-  for (int c = 0; c < ns; c++) {
-    int k = dp->csym[c];
-    ps->s[k] = vers ? base[k] - accs[c] : base[k] + accs[c];
+  for (int c = ns - 1; c >= 0; c--) {
+    const int k = dp->csym[c];
+    for (int p = 0; p < np; p++)
+      re[k * BLK + p] = vers ? base[k] - accs[c * BLK + p] : base[k] + accs[c * BLK + p];
   }
-  for (int c = 0; c < na; c++)
-    ps->s[dp->canti[c]] = CMPLX(creal(ps->s[dp->canti[c]]), acca[c]);
+  for (int c = na - 1; c >= 0; c--) {
+    const int k = dp->canti[c];
+    for (int p = 0; p < np; p++)
+      im[k * BLK + p] = acca[c * BLK + p];
+  }
+  /* the components not kept: their sums at k = 0; the imaginary parts not kept: 0 */
+  for (int k = 0, c = 0, a = 0; k < dp->nc; k++) {
+    if (c < ns && dp->csym[c] == k)
+      c++;
+    else
+      for (int p = 0; p < np; p++)
+        re[k * BLK + p] = base[k];
+    if (a < na && dp->canti[a] == k)
+      a++;
+    else
+      for (int p = 0; p < np; p++)
+        im[k * BLK + p] = 0.0;
+  }
+}
+
+/* Long waves (the versine form): every phase of the terms within pi/2. */
+static int long_wave(const mfs_disp_plan *dp, double ph1, double ph2)
+{
+  return dp->mij * (fabs(ph1) + fabs(ph2)) <= M_PI_2;
+}
+
+/* The sums of point p of a block. */
+static void block_sums(const mfs_disp_plan *dp, const double *re, const double *im, int p,
+                       raw_sums *ps)
+{
+  for (int c = 0; c < dp->nc; c++)
+    ps->s[c] = CMPLX(re[c * BLK + p], im[c * BLK + p]);
+}
+
+/* The folded sums at one wave vector. */
+static void fold_eval(const mfs_disp_plan *dp, double ph1, double ph2, int want_im, raw_sums *ps)
+{
+  double re[MFS_DISP_NC * BLK], im[MFS_DISP_NC * BLK];
+  fold_block(dp, 1, &ph1, &ph2, long_wave(dp, ph1, ph2), want_im, re, im);
+  block_sums(dp, re, im, 0, ps);
 }
 
 /* The phases k.a1, k.a2 of a wave vector k (1/dx). */
@@ -981,16 +1057,56 @@ static void ray_k(const mfs_disp_plan *dp, double kappa, double c, double s, dou
 mfs_status mfs_disp_omega2(const mfs_disp_plan *dp, double sbar, double kappa, double theta,
                            double complex *omega2)
 {
-  return mfs_disp_ray(dp, &sbar, 1, theta, &kappa, 1, omega2);
+  return mfs_disp_ray(dp, &sbar, 1, theta, &kappa, 1, omega2, 0);
 }
 
 enum { RAY_STRESSES = 16 }; /* stresses per pass over a ray */
 
-mfs_status mfs_disp_ray(const mfs_disp_plan *dp, const double *sbar, size_t nsbar, double theta,
-                        const double *kappa, size_t n, double complex *omega2)
+/* The points of a ray waiting for a block of their form (long or short waves). */
+typedef struct {
+  int np;
+  size_t idx[BLK];
+  double ph1[BLK], ph2[BLK];
+} ray_pending;
+
+/* Evaluate a pending block at the stresses at[0..ns) (of stress index s0 on),
+ * into omega2 (the ray's layout, stresses ld apart); the first failure's
+ * status in *first. */
+static void ray_block(const mfs_disp_plan *dp, ray_pending *b, int vers, const disp_stress *at,
+                      size_t s0, size_t ns, size_t ld, double complex *omega2, mfs_status *first)
 {
-  const int nb = dp->nbr, herm = hermitian(dp), im = want_im(dp);
+  double re[MFS_DISP_NC * BLK], im[MFS_DISP_NC * BLK];
+  const int nb = dp->nbr, herm = hermitian(dp), np = b->np;
+  fold_block(dp, np, b->ph1, b->ph2, vers, want_im(dp), re, im);
+  for (size_t q = 0; q < ns; q++)
+    for (int p = 0; p < np; p++) {
+      double complex *w = omega2 + (s0 + q) * ld + b->idx[p] * (size_t)nb;
+      mfs_status e;
+      if (nb == 1 && !dp->plane) { /* one scalar branch: as scalar_contract and eig_solve */
+        double complex K = CMPLX(at[q].ca * re[p] + at[q].cg * re[BLK + p],
+                                 at[q].ca * im[p] + at[q].cg * im[BLK + p]),
+                       M = CMPLX(re[2 * BLK + p], im[2 * BLK + p]);
+        e = solve1(K, M, herm, w);
+      } else {
+        raw_sums ps;
+        block_sums(dp, re, im, p, &ps);
+        e = solve_at(dp, &ps, at + q, herm, w);
+      }
+      if (e != MFS_OK) {
+        for (int k = 0; k < nb; k++)
+          w[k] = CMPLX(NAN, NAN);
+        *first = *first == MFS_OK ? e : *first;
+      }
+    }
+  b->np = 0;
+}
+
+mfs_status mfs_disp_ray(const mfs_disp_plan *dp, const double *sbar, size_t nsbar, double theta,
+                        const double *kappa, size_t n, double complex *omega2, size_t ld)
+{
   const double c = cos(theta), s = sin(theta);
+  if (ld == 0)
+    ld = n * (size_t)dp->nbr;
   mfs_status first = MFS_OK;
   for (size_t s0 = 0; s0 < nsbar; s0 += RAY_STRESSES) {
     size_t ns = nsbar - s0 < RAY_STRESSES ? nsbar - s0 : RAY_STRESSES;
@@ -1000,22 +1116,22 @@ mfs_status mfs_disp_ray(const mfs_disp_plan *dp, const double *sbar, size_t nsba
       if (e != MFS_OK)
         return e;
     }
+    ray_pending pend[2] = {{.np = 0}, {.np = 0}}; /* short, long waves */
     for (size_t i = 0; i < n; i++) {
       double k[2], ph1, ph2;
       ray_k(dp, kappa[i], c, s, k);
       phases(dp, k, &ph1, &ph2);
-      raw_sums ps;
-      fold_eval(dp, ph1, ph2, im, &ps);
-      for (size_t q = 0; q < ns; q++) {
-        double complex *w = omega2 + ((s0 + q) * n + i) * (size_t)nb;
-        mfs_status e = solve_at(dp, &ps, at + q, herm, w);
-        if (e != MFS_OK) {
-          for (int b = 0; b < nb; b++)
-            w[b] = CMPLX(NAN, NAN);
-          first = first == MFS_OK ? e : first;
-        }
-      }
+      int lw = long_wave(dp, ph1, ph2);
+      ray_pending *b = pend + lw;
+      b->idx[b->np] = i;
+      b->ph1[b->np] = ph1;
+      b->ph2[b->np] = ph2;
+      if (++b->np == BLK)
+        ray_block(dp, b, lw, at, s0, ns, ld, omega2, &first);
     }
+    for (int lw = 0; lw < 2; lw++)
+      if (pend[lw].np)
+        ray_block(dp, pend + lw, lw, at, s0, ns, ld, omega2, &first);
   }
   return first;
 }

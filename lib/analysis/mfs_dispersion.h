@@ -121,17 +121,17 @@ mfs_status mfs_disp_omega2(const mfs_disp_plan *pl, double sbar, double kappa, d
                            double _Complex *omega2);
 
 /* omega^2 along a ray: at the wave numbers kappa[0..n) (kappa dx / pi) in
- * direction theta and each stress sbar[0..nsbar), into omega2[(s n + i) nb
- * + b] (nb = mfs_disp_branches), the same values as mfs_disp_omega2 point by
- * point, bit for bit; the lattice sums of a wave vector serve all the
- * stresses.  Every point is computed on its own from the plan (which is only
+ * direction theta and each stress sbar[0..nsbar), into omega2[s ld + i nb +
+ * b] (nb = mfs_disp_branches; ld >= n nb, or 0 for n nb), the same values as
+ * mfs_disp_omega2 point by point, bit for bit; the lattice sums of a wave
+ * vector serve all the stresses.  Every point is computed on its own from the plan (which is only
  * read; nothing is allocated), so calls may run in parallel on one plan and
  * a ray split into pieces gives the same bits.  MFS_OK, or the status of the
  * first failing point (MFS_EDOMAIN, MFS_ELAPACK: its values are NaN, the
  * other points are computed) or of a stress (MFS_EINVAL, as mfs_disp_omega2:
  * nothing computed). */
 mfs_status mfs_disp_ray(const mfs_disp_plan *pl, const double *sbar, size_t nsbar, double theta,
-                        const double *kappa, size_t n, double _Complex *omega2);
+                        const double *kappa, size_t n, double _Complex *omega2, size_t ld);
 
 /* Symbols at one wave vector, for checks: K(k) and M(k), nb x nb row-major,
  * summed term by term with a sincos per lattice offset (the reference the
