@@ -198,12 +198,15 @@ static mfs_status eval_point(const mfs_disp_plan *pl, const mfs_disp_sample *smp
     kall[2 * (nz + i)] = kap * cos(th);
     kall[2 * (nz + i) + 1] = kap * sin(th);
   }
-  for (size_t i = 0; i < ntot; i++) {
-    mfs_status s = smp && i < nz ? mfs_disp_sample_omega2(smp, i, st, w + i * (size_t)nb)
-                                 : mfs_disp_omega2_state(pl, st, kall + 2 * i, w + i * (size_t)nb);
+  size_t i0 = smp ? nz : 0; /* the zone from the sample, the rest at once */
+  for (size_t i = 0; i < i0; i++) {
+    mfs_status s = mfs_disp_sample_omega2(smp, i, st, w + i * (size_t)nb);
     if (s != MFS_OK)
       return s;
   }
+  mfs_status e = mfs_disp_omega2_states(pl, st, ntot - i0, kall + 2 * i0, w + i0 * (size_t)nb);
+  if (e != MFS_OK)
+    return e;
   double scale = 0.0;
   for (size_t i = 0; i < ntot * (size_t)nb; i++)
     scale = fmax(scale, cabs(w[i]));

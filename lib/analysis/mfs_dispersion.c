@@ -681,6 +681,12 @@ static int cmp_re(const void *a, const void *b)
   return (x > y) - (x < y);
 }
 
+/* x / y; by a real y without the complex division (the lumped masses). */
+static inline double complex cdiv(double complex x, double complex y)
+{
+  return cimag(y) == 0.0 ? CMPLX(creal(x) / creal(y), cimag(x) / creal(y)) : x / y;
+}
+
 /* omega^2 = K / M of one branch. */
 static inline mfs_status solve1(double complex K, double complex M, int herm, double complex *omega2)
 {
@@ -688,10 +694,8 @@ static inline mfs_status solve1(double complex K, double complex M, int herm, do
     return MFS_EDOMAIN;
   if (herm)
     *omega2 = creal(K) / creal(M);
-  else if (cimag(M) == 0.0) /* a real mass (lumped): K / m without the complex division */
-    *omega2 = CMPLX(creal(K) / creal(M), cimag(K) / creal(M));
   else
-    *omega2 = K / M;
+    *omega2 = cdiv(K, M);
   return isfinite(creal(*omega2)) && isfinite(cimag(*omega2)) ? MFS_OK : MFS_EDOMAIN;
 }
 
@@ -703,18 +707,22 @@ static mfs_status eig_solve(int n, double complex *K, double complex *M, int her
 {
   if (n == 1)
     return solve1(K[0], M[0], herm, omega2);
-  if (n == 2 && M[1] == 0.0 && M[2] == 0.0 && M[0] == M[3]) {
-    if (cabs(M[0]) == 0.0)
+  if (n == 2 && M[1] == 0.0 && M[2] == 0.0 &&
+      (M[0] == M[3] || !herm || (creal(M[0]) > 0.0 && creal(M[3]) > 0.0))) {
+    /* a diagonal mass (lumped): the eigenvalues of M^-1 K, or for Hermitian
+     * symbols of M^-1/2 K M^-1/2 */
+    if (M[0] == 0.0 || M[3] == 0.0)
       return MFS_EDOMAIN;
-    double complex m = M[0];
+    double complex m = M[0], m1 = M[3];
     if (herm) {
-      double a = creal(K[0]) / creal(m), d = creal(K[3]) / creal(m);
-      double b = cabs(K[1]) / creal(m), r = hypot(0.5 * (a - d), b);
+      double a = creal(K[0]) / creal(m), d = creal(K[3]) / creal(m1);
+      double b = cabs(K[1]) / (m == m1 ? creal(m) : sqrt(creal(m) * creal(m1)));
+      double r = hypot(0.5 * (a - d), b);
       omega2[0] = 0.5 * (a + d) - r;
       omega2[1] = 0.5 * (a + d) + r;
       return isfinite(r) && isfinite(a + d) ? MFS_OK : MFS_EDOMAIN;
     }
-    double complex a = K[0] / m, b = K[1] / m, c = K[2] / m, d = K[3] / m;
+    double complex a = cdiv(K[0], m), b = cdiv(K[1], m), c = cdiv(K[2], m1), d = cdiv(K[3], m1);
     double complex h = 0.5 * (a - d), r = csqrt(h * h + b * c);
     omega2[0] = 0.5 * (a + d) - r;
     omega2[1] = 0.5 * (a + d) + r;
@@ -866,26 +874,28 @@ static void phase_table(int np, const double *ph, int mmax, int vers, double *x,
 }
 
 enum { FOLD_TAB = 64 }; /* phase tables on the stack up to |m| = 64; beyond, a sincos per offset */
+enum { OCHUNK = 32 };   /* offsets whose phases are formed at a time */
 
-/* The folded sums of a block of np wave vectors, of phases ph1 = k.a1, ph2 =
- * k.a2 (1D: ph2 = 0), all long waves (vers: every phase of the terms within
- * pi/2, the versine form) or none (the cosine form): re[c BLK + p] + i im[c
- * BLK + p] for the raw components c of the plan (imaginary parts only if
- * want_im; zero otherwise).  Reads the plan only; no allocation. */
-static void fold_block(const mfs_disp_plan *dp, int np, const double *ph1, const double *ph2,
-                       int vers, int want_im, double *re, double *im)
+/* The folded sums of L wave vectors (L = 1 or BLK, a constant where it is
+ * inlined, so that the accumulators stay in registers), of phases ph1 =
+ * k.a1, ph2 = k.a2 (1D: ph2 = 0), all long waves (vers: every phase of the
+ * terms within pi/2, the versine form) or none (the cosine form): re[c BLK +
+ * p] + i im[c BLK + p] for the raw components c of the plan (imaginary parts
+ * only if want_im; zero otherwise).  Reads the plan only; no allocation. */
+static inline void fold_lanes(const mfs_disp_plan *dp, const int L, const double *ph1,
+                              const double *ph2, int vers, int want_im, double *re, double *im)
 {
   double x1[(FOLD_TAB + 1) * BLK], s1[(FOLD_TAB + 1) * BLK];
   double x2[(2 * FOLD_TAB + 1) * BLK], s2[(2 * FOLD_TAB + 1) * BLK];
-  double X[BLK], S[BLK], t[BLK], cc[BLK], vv[BLK];
+  double X[OCHUNK * BLK], S[OCHUNK * BLK], t[BLK], cc[BLK], vv[BLK];
+  double accs[MFS_DISP_NC * BLK], acca[MFS_DISP_NC * BLK];
   const int two = dp->spec.disc.dim > 1, m = dp->mij < FOLD_TAB ? dp->mij : FOLD_TAB;
   const int ns = dp->nsym, na = want_im ? dp->nanti : 0;
-  double *accs = re, *acca = im; /* accumulated in the kept components' slots, then placed */
-  phase_table(np, ph1, m, vers, x1, s1);
+  phase_table(L, ph1, m, vers, x1, s1);
   if (two) {
-    phase_table(np, ph2, m, vers, x2 + FOLD_TAB * BLK, s2 + FOLD_TAB * BLK);
+    phase_table(L, ph2, m, vers, x2 + FOLD_TAB * BLK, s2 + FOLD_TAB * BLK);
     for (int q = 1; q <= m; q++)
-      for (int p = 0; p < np; p++) {
+      for (int p = 0; p < L; p++) {
         x2[(FOLD_TAB - q) * BLK + p] = x2[(FOLD_TAB + q) * BLK + p];
         s2[(FOLD_TAB - q) * BLK + p] = -s2[(FOLD_TAB + q) * BLK + p];
       }
@@ -894,72 +904,99 @@ static void fold_block(const mfs_disp_plan *dp, int np, const double *ph1, const
     accs[c] = 0.0;
   for (int c = 0; c < na * BLK; c++)
     acca[c] = 0.0;
-  const double *sy = dp->sym, *an = dp->anti;
-  for (size_t o = 0; o < dp->no; o++, sy += ns, an += dp->nanti) {
-    const int i = dp->oi[o], j = dp->oj[o];
-    const double *Xo = X, *So = S;
-    if (i > m || j > m || j < -m) {
-      for (int p = 0; p < np; p++)
-        t[p] = i * ph1[p] + j * ph2[p];
-      sincos_v(np, t, cc, vv, S);
-      for (int p = 0; p < np; p++)
-        X[p] = vers ? vv[p] : cc[p];
-    } else if (!two) {
-      Xo = x1 + i * BLK;
-      So = s1 + i * BLK;
-    } else { /* the angle sum i ph1 + j ph2 */
-      const double *a = x1 + i * BLK, *sa = s1 + i * BLK;
-      const double *b = x2 + (FOLD_TAB + j) * BLK, *sb = s2 + (FOLD_TAB + j) * BLK;
-      if (vers)
-        for (int p = 0; p < np; p++) {
-          X[p] = (a[p] + b[p]) - (a[p] * b[p] - sa[p] * sb[p]);
-          S[p] = (sa[p] + sb[p]) - (sa[p] * b[p] + a[p] * sb[p]);
+  for (size_t o0 = 0; o0 < dp->no; o0 += OCHUNK) {
+    const int no = dp->no - o0 < OCHUNK ? (int)(dp->no - o0) : OCHUNK;
+    for (int q = 0; q < no; q++) { /* the phase factors of the chunk's offsets */
+      const int i = dp->oi[o0 + q], j = dp->oj[o0 + q];
+      double *Xq = X + q * BLK, *Sq = S + q * BLK;
+      if (i > m || j > m || j < -m) {
+        for (int p = 0; p < L; p++)
+          t[p] = i * ph1[p] + j * ph2[p];
+        sincos_v(L, t, cc, vv, Sq);
+        for (int p = 0; p < L; p++)
+          Xq[p] = vers ? vv[p] : cc[p];
+      } else if (!two) {
+        for (int p = 0; p < L; p++) {
+          Xq[p] = x1[i * BLK + p];
+          Sq[p] = s1[i * BLK + p];
         }
-      else
-        for (int p = 0; p < np; p++) {
-          X[p] = a[p] * b[p] - sa[p] * sb[p];
-          S[p] = sa[p] * b[p] + a[p] * sb[p];
-        }
+      } else { /* the angle sum i ph1 + j ph2 */
+        const double *a = x1 + i * BLK, *sa = s1 + i * BLK;
+        const double *b = x2 + (FOLD_TAB + j) * BLK, *sb = s2 + (FOLD_TAB + j) * BLK;
+        if (vers)
+          for (int p = 0; p < L; p++) {
+            Xq[p] = (a[p] + b[p]) - (a[p] * b[p] - sa[p] * sb[p]);
+            Sq[p] = (sa[p] + sb[p]) - (sa[p] * b[p] + a[p] * sb[p]);
+          }
+        else
+          for (int p = 0; p < L; p++) {
+            Xq[p] = a[p] * b[p] - sa[p] * sb[p];
+            Sq[p] = sa[p] * b[p] + a[p] * sb[p];
+          }
+      }
     }
+    /* the sums, a component at a time over the chunk's offsets (in order) */
+    const double *sy = dp->sym + o0 * (size_t)ns, *an = dp->anti + o0 * (size_t)dp->nanti;
     for (int c = 0; c < ns; c++) {
-      const double w = sy[c];
-      double *acc = accs + c * BLK;
-      for (int p = 0; p < np; p++)
-        acc[p] += w * Xo[p];
+      double acc[BLK];
+      for (int p = 0; p < L; p++)
+        acc[p] = accs[c * BLK + p];
+      for (int q = 0; q < no; q++) {
+        const double w = sy[q * ns + c];
+        for (int p = 0; p < L; p++)
+          acc[p] += w * X[q * BLK + p];
+      }
+      for (int p = 0; p < L; p++)
+        accs[c * BLK + p] = acc[p];
     }
     for (int c = 0; c < na; c++) {
-      const double w = an[c];
-      double *acc = acca + c * BLK;
-      for (int p = 0; p < np; p++)
-        acc[p] += w * So[p];
+      double acc[BLK];
+      for (int p = 0; p < L; p++)
+        acc[p] = acca[c * BLK + p];
+      for (int q = 0; q < no; q++) {
+        const double w = an[q * dp->nanti + c];
+        for (int p = 0; p < L; p++)
+          acc[p] += w * S[q * BLK + p];
+      }
+      for (int p = 0; p < L; p++)
+        acca[c * BLK + p] = acc[p];
     }
   }
-  /* place: Re = c0 - sum sym vers (long waves) or c(0) + sum sym cos; the
-   * kept components sit in the first ns (na) slots, moved up from the last */
+  /* Re = c0 - sum sym vers (long waves) or c(0) + sum sym cos; the
+   * components not kept: their sums at k = 0; imaginary parts not kept: 0 */
   const double *base = vers ? dp->c0 : dp->corig;
-  for (int c = ns - 1; c >= 0; c--) {
+  for (int k = 0; k < dp->nc; k++)
+    for (int p = 0; p < L; p++) {
+      re[k * BLK + p] = base[k];
+      im[k * BLK + p] = 0.0;
+    }
+  for (int c = 0; c < ns; c++) {
     const int k = dp->csym[c];
-    for (int p = 0; p < np; p++)
+    for (int p = 0; p < L; p++)
       re[k * BLK + p] = vers ? base[k] - accs[c * BLK + p] : base[k] + accs[c * BLK + p];
   }
-  for (int c = na - 1; c >= 0; c--) {
+  for (int c = 0; c < na; c++) {
     const int k = dp->canti[c];
-    for (int p = 0; p < np; p++)
+    for (int p = 0; p < L; p++)
       im[k * BLK + p] = acca[c * BLK + p];
   }
-  /* the components not kept: their sums at k = 0; the imaginary parts not kept: 0 */
-  for (int k = 0, c = 0, a = 0; k < dp->nc; k++) {
-    if (c < ns && dp->csym[c] == k)
-      c++;
-    else
-      for (int p = 0; p < np; p++)
-        re[k * BLK + p] = base[k];
-    if (a < na && dp->canti[a] == k)
-      a++;
-    else
-      for (int p = 0; p < np; p++)
-        im[k * BLK + p] = 0.0;
+}
+
+/* A block of np <= BLK wave vectors: all BLK lanes computed (the unused ones
+ * at phase 0), or one lane. */
+static void fold_block(const mfs_disp_plan *dp, int np, const double *ph1, const double *ph2,
+                       int vers, int want_im, double *re, double *im)
+{
+  if (np == 1) {
+    fold_lanes(dp, 1, ph1, ph2, vers, want_im, re, im);
+    return;
   }
+  double p1[BLK], p2[BLK];
+  for (int p = 0; p < BLK; p++) {
+    p1[p] = p < np ? ph1[p] : 0.0;
+    p2[p] = p < np ? ph2[p] : 0.0;
+  }
+  fold_lanes(dp, BLK, p1, p2, vers, want_im, re, im);
 }
 
 /* Long waves (the versine form): every phase of the terms within pi/2. */
@@ -1031,15 +1068,7 @@ static int want_im(const mfs_disp_plan *dp)
 mfs_status mfs_disp_omega2_state(const mfs_disp_plan *dp, const mfs_plane_state *s,
                                  const double *k, double complex *omega2)
 {
-  if (!dp->plane || !s || !same_stretch(dp, s))
-    return MFS_EINVAL;
-  double ph1, ph2;
-  phases(dp, k, &ph1, &ph2);
-  raw_sums ps;
-  fold_eval(dp, ph1, ph2, want_im(dp), &ps);
-  double complex K[16], M[16];
-  plane_contract(dp, &ps, s, K, M);
-  return eig_solve(dp->nbr, K, M, hermitian(dp), omega2);
+  return mfs_disp_omega2_states(dp, s, 1, k, omega2);
 }
 
 /* The wave vector kappa pi (cos theta, sin theta) of a ray (1D: kappa pi). */
@@ -1069,11 +1098,22 @@ typedef struct {
   double ph1[BLK], ph2[BLK];
 } ray_pending;
 
+/* The status of the first failure in the order (stress, point). */
+typedef struct {
+  mfs_status st;
+  size_t s, i;
+} first_fail;
+
+static void note_fail(first_fail *f, mfs_status st, size_t s, size_t i)
+{
+  if (f->st == MFS_OK || s < f->s || (s == f->s && i < f->i))
+    *f = (first_fail){.st = st, .s = s, .i = i};
+}
+
 /* Evaluate a pending block at the stresses at[0..ns) (of stress index s0 on),
- * into omega2 (the ray's layout, stresses ld apart); the first failure's
- * status in *first. */
+ * into omega2 (the ray's layout, stresses ld apart); failures noted in *first. */
 static void ray_block(const mfs_disp_plan *dp, ray_pending *b, int vers, const disp_stress *at,
-                      size_t s0, size_t ns, size_t ld, double complex *omega2, mfs_status *first)
+                      size_t s0, size_t ns, size_t ld, double complex *omega2, first_fail *first)
 {
   double re[MFS_DISP_NC * BLK], im[MFS_DISP_NC * BLK];
   const int nb = dp->nbr, herm = hermitian(dp), np = b->np;
@@ -1095,10 +1135,41 @@ static void ray_block(const mfs_disp_plan *dp, ray_pending *b, int vers, const d
       if (e != MFS_OK) {
         for (int k = 0; k < nb; k++)
           w[k] = CMPLX(NAN, NAN);
-        *first = *first == MFS_OK ? e : *first;
+        note_fail(first, e, s0 + q, b->idx[p]);
       }
     }
   b->np = 0;
+}
+
+/* omega^2 at n points at the stresses at[0..ns) (stress index s0 on): the
+ * wave vectors k[2 i .. 2 i + 1], or kappa[i] along (c, s) = (cos, sin)
+ * theta; points in blocks of one form (long or short waves) as they come. */
+static void eval_points(const mfs_disp_plan *dp, const disp_stress *at, size_t s0, size_t ns,
+                        size_t n, const double *k, const double *kappa, double c, double s,
+                        double complex *omega2, size_t ld, first_fail *first)
+{
+  ray_pending pend[2]; /* short, long waves (not zeroed: filled as they come) */
+  pend[0].np = pend[1].np = 0;
+  for (size_t i = 0; i < n; i++) {
+    double kk[2], ph1, ph2;
+    if (k) {
+      kk[0] = k[2 * i];
+      kk[1] = k[2 * i + 1];
+    } else {
+      ray_k(dp, kappa[i], c, s, kk);
+    }
+    phases(dp, kk, &ph1, &ph2);
+    int lw = long_wave(dp, ph1, ph2);
+    ray_pending *b = pend + lw;
+    b->idx[b->np] = i;
+    b->ph1[b->np] = ph1;
+    b->ph2[b->np] = ph2;
+    if (++b->np == BLK)
+      ray_block(dp, b, lw, at, s0, ns, ld, omega2, first);
+  }
+  for (int lw = 0; lw < 2; lw++)
+    if (pend[lw].np)
+      ray_block(dp, pend + lw, lw, at, s0, ns, ld, omega2, first);
 }
 
 mfs_status mfs_disp_ray(const mfs_disp_plan *dp, const double *sbar, size_t nsbar, double theta,
@@ -1107,7 +1178,7 @@ mfs_status mfs_disp_ray(const mfs_disp_plan *dp, const double *sbar, size_t nsba
   const double c = cos(theta), s = sin(theta);
   if (ld == 0)
     ld = n * (size_t)dp->nbr;
-  mfs_status first = MFS_OK;
+  first_fail first = {.st = MFS_OK};
   for (size_t s0 = 0; s0 < nsbar; s0 += RAY_STRESSES) {
     size_t ns = nsbar - s0 < RAY_STRESSES ? nsbar - s0 : RAY_STRESSES;
     disp_stress at[RAY_STRESSES];
@@ -1116,24 +1187,20 @@ mfs_status mfs_disp_ray(const mfs_disp_plan *dp, const double *sbar, size_t nsba
       if (e != MFS_OK)
         return e;
     }
-    ray_pending pend[2] = {{.np = 0}, {.np = 0}}; /* short, long waves */
-    for (size_t i = 0; i < n; i++) {
-      double k[2], ph1, ph2;
-      ray_k(dp, kappa[i], c, s, k);
-      phases(dp, k, &ph1, &ph2);
-      int lw = long_wave(dp, ph1, ph2);
-      ray_pending *b = pend + lw;
-      b->idx[b->np] = i;
-      b->ph1[b->np] = ph1;
-      b->ph2[b->np] = ph2;
-      if (++b->np == BLK)
-        ray_block(dp, b, lw, at, s0, ns, ld, omega2, &first);
-    }
-    for (int lw = 0; lw < 2; lw++)
-      if (pend[lw].np)
-        ray_block(dp, pend + lw, lw, at, s0, ns, ld, omega2, &first);
+    eval_points(dp, at, s0, ns, n, NULL, kappa, c, s, omega2, ld, &first);
   }
-  return first;
+  return first.st;
+}
+
+mfs_status mfs_disp_omega2_states(const mfs_disp_plan *dp, const mfs_plane_state *s, size_t n,
+                                  const double *k, double complex *omega2)
+{
+  if (!dp->plane || !s || !same_stretch(dp, s))
+    return MFS_EINVAL;
+  disp_stress at = {.ps = *s};
+  first_fail first = {.st = MFS_OK};
+  eval_points(dp, &at, 0, 1, n, k, NULL, 0.0, 0.0, omega2, n * (size_t)dp->nbr, &first);
+  return first.st;
 }
 
 mfs_status mfs_disp_longwave(const mfs_disp_plan *dp, double sbar, double theta, double *q)

@@ -127,9 +127,9 @@ mfs_status mfs_disp_omega2(const mfs_disp_plan *pl, double sbar, double kappa, d
  * vector serve all the stresses.  Every point is computed on its own from the plan (which is only
  * read; nothing is allocated), so calls may run in parallel on one plan and
  * a ray split into pieces gives the same bits.  MFS_OK, or the status of the
- * first failing point (MFS_EDOMAIN, MFS_ELAPACK: its values are NaN, the
- * other points are computed) or of a stress (MFS_EINVAL, as mfs_disp_omega2:
- * nothing computed). */
+ * first failing point in the order (stress, kappa) (MFS_EDOMAIN, MFS_ELAPACK:
+ * the values of failing points are NaN, the others are computed), or of a
+ * stress (MFS_EINVAL, as mfs_disp_omega2: nothing computed). */
 mfs_status mfs_disp_ray(const mfs_disp_plan *pl, const double *sbar, size_t nsbar, double theta,
                         const double *kappa, size_t n, double _Complex *omega2, size_t ld);
 
@@ -153,6 +153,13 @@ mfs_status mfs_disp_symbols_state(const mfs_disp_plan *pl, const mfs_plane_state
                                   const double *k, double _Complex *K, double _Complex *M);
 mfs_status mfs_disp_omega2_state(const mfs_disp_plan *pl, const mfs_plane_state *s,
                                  const double *k, double _Complex *omega2);
+
+/* mfs_disp_omega2_state at n wave vectors k[2 i .. 2 i + 1] into omega2[i nb
+ * .. i nb + nb - 1], the same bits point by point, evaluated in blocks (as
+ * mfs_disp_ray); reads the plan only.  MFS_OK, MFS_EINVAL as above, or the
+ * status of the first failing point (its values NaN). */
+mfs_status mfs_disp_omega2_states(const mfs_disp_plan *pl, const mfs_plane_state *s, size_t n,
+                                  const double *k, double _Complex *omega2);
 
 /* The continuum's long-wave limit: omega^2 / kappa^2 as kappa -> 0 along
  * theta, for each of the ndof polarizations (ascending): the eigenvalues of
