@@ -715,9 +715,11 @@ static mfs_status eig_solve(int n, double complex *K, double complex *M, int her
       return MFS_EDOMAIN;
     double complex m = M[0], m1 = M[3];
     if (herm) {
-      double a = creal(K[0]) / creal(m), d = creal(K[3]) / creal(m1);
-      double b = cabs(K[1]) / (m == m1 ? creal(m) : sqrt(creal(m) * creal(m1)));
-      double r = hypot(0.5 * (a - d), b);
+      /* r = |((a - d) / 2, |K01| / sqrt(m0 m1))| by one square root (no hypot:
+       * these are neither huge nor tiny) */
+      double a = creal(K[0]) / creal(m), d = creal(K[3]) / creal(m1), h = 0.5 * (a - d);
+      double k2 = creal(K[1]) * creal(K[1]) + cimag(K[1]) * cimag(K[1]);
+      double r = sqrt(h * h + k2 / (creal(m) * creal(m1)));
       omega2[0] = 0.5 * (a + d) - r;
       omega2[1] = 0.5 * (a + d) + r;
       return isfinite(r) && isfinite(a + d) ? MFS_OK : MFS_EDOMAIN;
@@ -787,6 +789,19 @@ static int hermitian(const mfs_disp_plan *dp)
  * points of its block. */
 enum { BLK = 8 };
 
+/* The block kernels are compiled twice where the compiler can dispatch at run
+ * time (GCC on x86-64 Linux: ifunc), for SSE2 and for AVX2 without FMA: the
+ * same additions and multiplications, each rounded the same way, so the two
+ * give the same bits, AVX2 with twice the lanes per instruction. */
+#if defined(__GNUC__) && !defined(__clang__) && defined(__x86_64__) && defined(__linux__) && \
+  !defined(MFS_NO_CLONES)
+#define MFS_CLONES __attribute__((target_clones("avx2", "default")))
+#define MFS_INLINE __attribute__((always_inline)) inline /* into each clone */
+#else
+#define MFS_CLONES
+#define MFS_INLINE inline
+#endif
+
 /* cos x, 1 - cos x and sin x of x[0..np), each to about an ulp absolute and
  * the versine, near x = 0, also relative (1 - cos x computed as such loses
  * it): x reduced to |r| <= pi/4 by n = nearest(x 2/pi) with pi/2 in two
@@ -794,7 +809,7 @@ enum { BLK = 8 };
  * 2^20, then the rest), Taylor series of sin r and 1 - cos r to r^17 and r^18
  * (the next terms are below 1e-19 at pi/4), then the quadrant, without
  * branches.  libm beyond |x| = 1e5 (far outside the Brillouin zone). */
-static void sincos_v(int np, const double *x, double *c, double *v, double *s)
+MFS_CLONES static void sincos_v(int np, const double *x, double *c, double *v, double *s)
 {
   static const double two_pi = 6.36619772367581382433e-01, /* 2 / pi */
     pio2_1 = 1.57079632673412561417e+00,                   /* first 33 bits of pi / 2 */
@@ -836,7 +851,8 @@ static void sincos_v(int np, const double *x, double *c, double *v, double *s)
  * cos(m ph_p), s[m BLK + p] = sin(m ph_p), m = 0 .. mmax, by the addition
  * theorem (the versine form has no cancellation for small ph), restarted
  * from sincos_v every 8 steps so that rounding does not grow with m. */
-static void phase_table(int np, const double *ph, int mmax, int vers, double *x, double *s)
+MFS_CLONES static void phase_table(int np, const double *ph, int mmax, int vers, double *x,
+                                   double *s)
 {
   double c1[BLK], v1[BLK], s1[BLK], mp[BLK], cc[BLK], vv[BLK];
   for (int p = 0; p < np; p++) {
@@ -882,8 +898,8 @@ enum { OCHUNK = 32 };   /* offsets whose phases are formed at a time */
  * terms within pi/2, the versine form) or none (the cosine form): re[c BLK +
  * p] + i im[c BLK + p] for the raw components c of the plan (imaginary parts
  * only if want_im; zero otherwise).  Reads the plan only; no allocation. */
-static inline void fold_lanes(const mfs_disp_plan *dp, const int L, const double *ph1,
-                              const double *ph2, int vers, int want_im, double *re, double *im)
+static MFS_INLINE void fold_lanes(const mfs_disp_plan *dp, const int L, const double *ph1,
+                                  const double *ph2, int vers, int want_im, double *re, double *im)
 {
   double x1[(FOLD_TAB + 1) * BLK], s1[(FOLD_TAB + 1) * BLK];
   double x2[(2 * FOLD_TAB + 1) * BLK], s2[(2 * FOLD_TAB + 1) * BLK];
@@ -935,31 +951,38 @@ static inline void fold_lanes(const mfs_disp_plan *dp, const int L, const double
           }
       }
     }
-    /* the sums, a component at a time over the chunk's offsets (in order) */
+    /* the sums over the chunk's offsets in order: one lane a component at a
+     * time (a register), BLK lanes an offset at a time (vectors over the
+     * lanes); the same additions in the same order either way */
     const double *sy = dp->sym + o0 * (size_t)ns, *an = dp->anti + o0 * (size_t)dp->nanti;
-    for (int c = 0; c < ns; c++) {
-      double acc[BLK];
-      for (int p = 0; p < L; p++)
-        acc[p] = accs[c * BLK + p];
-      for (int q = 0; q < no; q++) {
-        const double w = sy[q * ns + c];
-        for (int p = 0; p < L; p++)
-          acc[p] += w * X[q * BLK + p];
+    if (L == 1) {
+      for (int c = 0; c < ns; c++) {
+        double acc = accs[c * BLK];
+        for (int q = 0; q < no; q++)
+          acc += sy[q * ns + c] * X[q * BLK];
+        accs[c * BLK] = acc;
       }
-      for (int p = 0; p < L; p++)
-        accs[c * BLK + p] = acc[p];
-    }
-    for (int c = 0; c < na; c++) {
-      double acc[BLK];
-      for (int p = 0; p < L; p++)
-        acc[p] = acca[c * BLK + p];
-      for (int q = 0; q < no; q++) {
-        const double w = an[q * dp->nanti + c];
-        for (int p = 0; p < L; p++)
-          acc[p] += w * S[q * BLK + p];
+      for (int c = 0; c < na; c++) {
+        double acc = acca[c * BLK];
+        for (int q = 0; q < no; q++)
+          acc += an[q * dp->nanti + c] * S[q * BLK];
+        acca[c * BLK] = acc;
       }
-      for (int p = 0; p < L; p++)
-        acca[c * BLK + p] = acc[p];
+    } else {
+      for (int q = 0; q < no; q++) {
+        for (int c = 0; c < ns; c++) {
+          const double w = sy[q * ns + c];
+#pragma GCC unroll 1
+          for (int p = 0; p < BLK; p++)
+            accs[c * BLK + p] += w * X[q * BLK + p];
+        }
+        for (int c = 0; c < na; c++) {
+          const double w = an[q * dp->nanti + c];
+#pragma GCC unroll 1
+          for (int p = 0; p < BLK; p++)
+            acca[c * BLK + p] += w * S[q * BLK + p];
+        }
+      }
     }
   }
   /* Re = c0 - sum sym vers (long waves) or c(0) + sum sym cos; the
@@ -984,7 +1007,8 @@ static inline void fold_lanes(const mfs_disp_plan *dp, const int L, const double
 
 /* A block of np <= BLK wave vectors: all BLK lanes computed (the unused ones
  * at phase 0), or one lane. */
-static void fold_block(const mfs_disp_plan *dp, int np, const double *ph1, const double *ph2,
+MFS_CLONES static void fold_block(const mfs_disp_plan *dp, int np, const double *ph1,
+                                  const double *ph2,
                        int vers, int want_im, double *re, double *im)
 {
   if (np == 1) {
@@ -1118,26 +1142,44 @@ static void ray_block(const mfs_disp_plan *dp, ray_pending *b, int vers, const d
   double re[MFS_DISP_NC * BLK], im[MFS_DISP_NC * BLK];
   const int nb = dp->nbr, herm = hermitian(dp), np = b->np;
   fold_block(dp, np, b->ph1, b->ph2, vers, want_im(dp), re, im);
-  for (size_t q = 0; q < ns; q++)
+  for (size_t q = 0; q < ns; q++) {
+    if (nb == 1 && !dp->plane) { /* one scalar branch: solve1 of scalar_contract, over the lanes */
+      double wr[BLK], wi[BLK];
+      const double ca = at[q].ca, cg = at[q].cg;
+      for (int p = 0; p < np; p++) { /* K / m for a real m (the lumped mass) */
+        wr[p] = (ca * re[p] + cg * re[BLK + p]) / re[2 * BLK + p];
+        wi[p] = herm ? 0.0 : (ca * im[p] + cg * im[BLK + p]) / re[2 * BLK + p];
+      }
+      for (int p = 0; p < np; p++) {
+        double complex *w = omega2 + (s0 + q) * ld + b->idx[p] * (size_t)nb;
+        mfs_status e = MFS_OK;
+        if (re[2 * BLK + p] == 0.0 || im[2 * BLK + p] != 0.0) { /* the general case */
+          double complex K = CMPLX(ca * re[p] + cg * re[BLK + p], ca * im[p] + cg * im[BLK + p]);
+          e = solve1(K, CMPLX(re[2 * BLK + p], im[2 * BLK + p]), herm, w);
+        } else if (isfinite(wr[p]) && isfinite(wi[p])) {
+          *w = CMPLX(wr[p], wi[p]);
+        } else {
+          e = MFS_EDOMAIN;
+        }
+        if (e != MFS_OK) {
+          *w = CMPLX(NAN, NAN);
+          note_fail(first, e, s0 + q, b->idx[p]);
+        }
+      }
+      continue;
+    }
     for (int p = 0; p < np; p++) {
       double complex *w = omega2 + (s0 + q) * ld + b->idx[p] * (size_t)nb;
-      mfs_status e;
-      if (nb == 1 && !dp->plane) { /* one scalar branch: as scalar_contract and eig_solve */
-        double complex K = CMPLX(at[q].ca * re[p] + at[q].cg * re[BLK + p],
-                                 at[q].ca * im[p] + at[q].cg * im[BLK + p]),
-                       M = CMPLX(re[2 * BLK + p], im[2 * BLK + p]);
-        e = solve1(K, M, herm, w);
-      } else {
-        raw_sums ps;
-        block_sums(dp, re, im, p, &ps);
-        e = solve_at(dp, &ps, at + q, herm, w);
-      }
+      raw_sums ps;
+      block_sums(dp, re, im, p, &ps);
+      mfs_status e = solve_at(dp, &ps, at + q, herm, w);
       if (e != MFS_OK) {
         for (int k = 0; k < nb; k++)
           w[k] = CMPLX(NAN, NAN);
         note_fail(first, e, s0 + q, b->idx[p]);
       }
     }
+  }
   b->np = 0;
 }
 
