@@ -14,7 +14,7 @@
  *   point         mfs_disp_omega2, one call per point
  *   ray           mfs_disp_ray, one call per (dilation, stress, angle)
  *   ray-stresses  mfs_disp_ray, one call per (dilation, angle) for all stresses
- *   threads-1, threads-2   the ray evaluation of a 10 x larger family in parallel
+ *   threads-1, threads-2   the ray evaluation of a 20 x larger family in parallel
  *                 over chunks of 256 wave numbers (OpenMP, as mfstab dispersion),
  *                 with 1 and 2 threads; identical says the two gave the same bits
  * error: the largest |omega^2 - reference| over the family relative to the
@@ -24,7 +24,7 @@
  *   seconds_max,ns_per_point,ns_per_point_branch,ratio,identical,error,peak_rss_mb,load1
  * (ns_per_point from the median).  With --numpy-data DIR the coefficients of the
  * NumPy comparison (bench_dispersion_numpy.py) and this run's values go to DIR.
- * usage: bench_dispersion [--repeat R] [--family NAME] [--numpy-data DIR] [-o FILE]
+ * usage: bench_dispersion [--repeat R] [--family NAME] [--no-threads] [--numpy-data DIR] [-o FILE]
  * Not a test: nothing here asserts a time. */
 #include <complex.h>
 #undef I
@@ -326,7 +326,7 @@ static void set_threads(int n)
 #endif
 }
 
-static void bench(FILE *out, const char *name, int repeat, const char *npdir)
+static void bench(FILE *out, const char *name, int repeat, int threads, const char *npdir)
 {
   family f = make(name);
   const size_t nval = (size_t)f.nplan * f.nsig * f.nth * f.nk * f.nb;
@@ -354,13 +354,13 @@ static void bench(FILE *out, const char *name, int repeat, const char *npdir)
   }
   if (npdir)
     numpy_data(&f, npdir, w);
-  /* threads: a family 10 x larger (wave numbers), 1 and 2 threads, the same bits? */
-  const int nk10 = 10 * f.nk;
+  /* threads: a family 20 x larger (wave numbers), 1 and 2 threads, the same bits? */
+  const int nk10 = 20 * f.nk;
   double *k10 = kappas(&f, nk10);
   const size_t n10 = (size_t)f.nplan * f.nsig * f.nth * nk10 * f.nb;
   double complex *w10[2] = {malloc(n10 * sizeof **w10), malloc(n10 * sizeof **w10)};
   double t1 = NAN;
-  for (int nt = 1; nt <= 2; nt++) {
+  for (int nt = 1; nt <= 2 && threads; nt++) {
     set_threads(nt);
     for (int r = 0; r < repeat; r++) {
       double t0 = now();
@@ -373,8 +373,8 @@ static void bench(FILE *out, const char *name, int repeat, const char *npdir)
       t1 = med;
     int same = nt == 1 || memcmp(w10[0], w10[1], n10 * sizeof **w10) == 0;
     fprintf(out, "%s,threads-%d,%d,%d,%d,%d,%.6g,%.6g,%.6g,%.4g,%.4g,%.4g,%s,,%.1f,%.2f\n", name,
-            nt, npts * 10, f.nb, nt, repeat, ts[0], med, ts[repeat - 1], 1e9 * med / (npts * 10.0),
-            1e9 * med / (npts * 10.0) / f.nb, t1 / med, nt == 1 ? "" : same ? "1" : "0", rss_mb(),
+            nt, npts * 20, f.nb, nt, repeat, ts[0], med, ts[repeat - 1], 1e9 * med / (npts * 20.0),
+            1e9 * med / (npts * 20.0) / f.nb, t1 / med, nt == 1 ? "" : same ? "1" : "0", rss_mb(),
             load1());
     fflush(out);
   }
@@ -389,7 +389,7 @@ static void bench(FILE *out, const char *name, int repeat, const char *npdir)
 
 int main(int argc, char **argv)
 {
-  int repeat = 7;
+  int repeat = 7, threads = 1;
   const char *fam = NULL, *npdir = NULL;
   FILE *out = stdout;
   for (int i = 1; i < argc; i++) {
@@ -397,6 +397,8 @@ int main(int argc, char **argv)
       repeat = atoi(argv[++i]);
     else if (!strcmp(argv[i], "--family") && i + 1 < argc)
       fam = argv[++i];
+    else if (!strcmp(argv[i], "--no-threads"))
+      threads = 0;
     else if (!strcmp(argv[i], "--numpy-data") && i + 1 < argc)
       npdir = argv[++i];
     else if (!strcmp(argv[i], "-o") && i + 1 < argc) {
@@ -406,8 +408,8 @@ int main(int argc, char **argv)
         return 2;
       }
     } else {
-      fprintf(stderr, "usage: bench_dispersion [--repeat R] [--family NAME] [--numpy-data DIR] "
-                      "[-o FILE]\n");
+      fprintf(stderr, "usage: bench_dispersion [--repeat R] [--family NAME] [--no-threads] "
+                      "[--numpy-data DIR] [-o FILE]\n");
       return 2;
     }
   }
@@ -419,7 +421,7 @@ int main(int argc, char **argv)
                "load1\n");
   for (int k = 0; k < 5; k++)
     if (!fam || !strcmp(fam, fams[k]))
-      bench(out, fams[k], repeat, npdir);
+      bench(out, fams[k], repeat, threads, npdir);
   if (out != stdout)
     fclose(out);
   return 0;

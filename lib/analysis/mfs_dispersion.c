@@ -828,11 +828,11 @@ MFS_CLONES static void sincos_v(int np, const double *x, double *c, double *v, d
     double cr = 1.0 - vr;
     /* the quadrant q = n mod 4 as n - 4 round(n / 4), in {-2, ..., 2}:
      * q = 0: (cos, sin) = (cr, sr); 1: (-sr, cr); +-2: (-cr, -sr); -1: (sr, -cr),
-     * chosen by products with 0 / 1 indicators, polynomials in q exact on
-     * these integers (no branch, so the loop vectorizes) */
-    double q = n - 4.0 * ((n * 0.25 + shift) - shift), q2 = q * q;
-    double e0 = 1.0 - q2 * (5.0 - q2) / 4.0, odd = q2 * (4.0 - q2) / 3.0;
-    double e2 = q2 * (q2 - 1.0) / 12.0, e1 = odd * (1.0 + q) / 2.0, em1 = odd * (1.0 - q) / 2.0;
+     * chosen by products with 0 / 1 indicators, polynomials in |q| exact on
+     * these integers (no branch and no division, so the loop vectorizes) */
+    double q = n - 4.0 * ((n * 0.25 + shift) - shift), aq = fabs(q);
+    double e0 = 0.5 * (1.0 - aq) * (2.0 - aq), odd = aq * (2.0 - aq), e2 = 0.5 * aq * (aq - 1.0);
+    double e1 = 0.5 * odd * (1.0 + q), em1 = 0.5 * odd * (1.0 - q);
     double cp = odd * sr + (1.0 - odd) * cr, sp = odd * cr + (1.0 - odd) * sr;
     double cq = cp * (1.0 - 2.0 * (e1 + e2)), sq = sp * (1.0 - 2.0 * (em1 + e2));
     c[p] = cq;
@@ -922,20 +922,21 @@ static MFS_INLINE void fold_lanes(const mfs_disp_plan *dp, const int L, const do
     acca[c] = 0.0;
   for (size_t o0 = 0; o0 < dp->no; o0 += OCHUNK) {
     const int no = dp->no - o0 < OCHUNK ? (int)(dp->no - o0) : OCHUNK;
-    for (int q = 0; q < no; q++) { /* the phase factors of the chunk's offsets */
+    const double *Xp[OCHUNK], *Sp[OCHUNK]; /* the phase factors of the chunk's offsets */
+    for (int q = 0; q < no; q++) {
       const int i = dp->oi[o0 + q], j = dp->oj[o0 + q];
       double *Xq = X + q * BLK, *Sq = S + q * BLK;
+      Xp[q] = Xq;
+      Sp[q] = Sq;
       if (i > m || j > m || j < -m) {
         for (int p = 0; p < L; p++)
           t[p] = i * ph1[p] + j * ph2[p];
         sincos_v(L, t, cc, vv, Sq);
         for (int p = 0; p < L; p++)
           Xq[p] = vers ? vv[p] : cc[p];
-      } else if (!two) {
-        for (int p = 0; p < L; p++) {
-          Xq[p] = x1[i * BLK + p];
-          Sq[p] = s1[i * BLK + p];
-        }
+      } else if (!two) { /* the tables themselves */
+        Xp[q] = x1 + i * BLK;
+        Sp[q] = s1 + i * BLK;
       } else { /* the angle sum i ph1 + j ph2 */
         const double *a = x1 + i * BLK, *sa = s1 + i * BLK;
         const double *b = x2 + (FOLD_TAB + j) * BLK, *sb = s2 + (FOLD_TAB + j) * BLK;
@@ -959,13 +960,13 @@ static MFS_INLINE void fold_lanes(const mfs_disp_plan *dp, const int L, const do
       for (int c = 0; c < ns; c++) {
         double acc = accs[c * BLK];
         for (int q = 0; q < no; q++)
-          acc += sy[q * ns + c] * X[q * BLK];
+          acc += sy[q * ns + c] * Xp[q][0];
         accs[c * BLK] = acc;
       }
       for (int c = 0; c < na; c++) {
         double acc = acca[c * BLK];
         for (int q = 0; q < no; q++)
-          acc += an[q * dp->nanti + c] * S[q * BLK];
+          acc += an[q * dp->nanti + c] * Sp[q][0];
         acca[c * BLK] = acc;
       }
     } else {
@@ -974,13 +975,13 @@ static MFS_INLINE void fold_lanes(const mfs_disp_plan *dp, const int L, const do
           const double w = sy[q * ns + c];
 #pragma GCC unroll 1
           for (int p = 0; p < BLK; p++)
-            accs[c * BLK + p] += w * X[q * BLK + p];
+            accs[c * BLK + p] += w * Xp[q][p];
         }
         for (int c = 0; c < na; c++) {
           const double w = an[q * dp->nanti + c];
 #pragma GCC unroll 1
           for (int p = 0; p < BLK; p++)
-            acca[c * BLK + p] += w * S[q * BLK + p];
+            acca[c * BLK + p] += w * Sp[q][p];
         }
       }
     }
@@ -1115,13 +1116,6 @@ mfs_status mfs_disp_omega2(const mfs_disp_plan *dp, double sbar, double kappa, d
 
 enum { RAY_STRESSES = 16 }; /* stresses per pass over a ray */
 
-/* The points of a ray waiting for a block of their form (long or short waves). */
-typedef struct {
-  int np;
-  size_t idx[BLK];
-  double ph1[BLK], ph2[BLK];
-} ray_pending;
-
 /* The status of the first failure in the order (stress, point). */
 typedef struct {
   mfs_status st;
@@ -1134,14 +1128,16 @@ static void note_fail(first_fail *f, mfs_status st, size_t s, size_t i)
     *f = (first_fail){.st = st, .s = s, .i = i};
 }
 
-/* Evaluate a pending block at the stresses at[0..ns) (of stress index s0 on),
- * into omega2 (the ray's layout, stresses ld apart); failures noted in *first. */
-static void ray_block(const mfs_disp_plan *dp, ray_pending *b, int vers, const disp_stress *at,
-                      size_t s0, size_t ns, size_t ld, double complex *omega2, first_fail *first)
+/* Evaluate the points idx[0..np) of phases ph1, ph2, all of one form (vers),
+ * at the stresses at[0..ns) (of stress index s0 on), into omega2 (the ray's
+ * layout, stresses ld apart); failures noted in *first. */
+static void ray_block(const mfs_disp_plan *dp, int np, const size_t *idx, const double *ph1,
+                      const double *ph2, int vers, const disp_stress *at, size_t s0, size_t ns,
+                      size_t ld, double complex *omega2, first_fail *first)
 {
   double re[MFS_DISP_NC * BLK], im[MFS_DISP_NC * BLK];
-  const int nb = dp->nbr, herm = hermitian(dp), np = b->np;
-  fold_block(dp, np, b->ph1, b->ph2, vers, want_im(dp), re, im);
+  const int nb = dp->nbr, herm = hermitian(dp);
+  fold_block(dp, np, ph1, ph2, vers, want_im(dp), re, im);
   for (size_t q = 0; q < ns; q++) {
     if (nb == 1 && !dp->plane) { /* one scalar branch: solve1 of scalar_contract, over the lanes */
       double wr[BLK], wi[BLK];
@@ -1151,7 +1147,7 @@ static void ray_block(const mfs_disp_plan *dp, ray_pending *b, int vers, const d
         wi[p] = herm ? 0.0 : (ca * im[p] + cg * im[BLK + p]) / re[2 * BLK + p];
       }
       for (int p = 0; p < np; p++) {
-        double complex *w = omega2 + (s0 + q) * ld + b->idx[p] * (size_t)nb;
+        double complex *w = omega2 + (s0 + q) * ld + idx[p] * (size_t)nb;
         mfs_status e = MFS_OK;
         if (re[2 * BLK + p] == 0.0 || im[2 * BLK + p] != 0.0) { /* the general case */
           double complex K = CMPLX(ca * re[p] + cg * re[BLK + p], ca * im[p] + cg * im[BLK + p]);
@@ -1163,55 +1159,68 @@ static void ray_block(const mfs_disp_plan *dp, ray_pending *b, int vers, const d
         }
         if (e != MFS_OK) {
           *w = CMPLX(NAN, NAN);
-          note_fail(first, e, s0 + q, b->idx[p]);
+          note_fail(first, e, s0 + q, idx[p]);
         }
       }
       continue;
     }
     for (int p = 0; p < np; p++) {
-      double complex *w = omega2 + (s0 + q) * ld + b->idx[p] * (size_t)nb;
+      double complex *w = omega2 + (s0 + q) * ld + idx[p] * (size_t)nb;
       raw_sums ps;
       block_sums(dp, re, im, p, &ps);
       mfs_status e = solve_at(dp, &ps, at + q, herm, w);
       if (e != MFS_OK) {
         for (int k = 0; k < nb; k++)
           w[k] = CMPLX(NAN, NAN);
-        note_fail(first, e, s0 + q, b->idx[p]);
+        note_fail(first, e, s0 + q, idx[p]);
       }
     }
   }
-  b->np = 0;
 }
 
 /* omega^2 at n points at the stresses at[0..ns) (stress index s0 on): the
  * wave vectors k[2 i .. 2 i + 1], or kappa[i] along (c, s) = (cos, sin)
- * theta; points in blocks of one form (long or short waves) as they come. */
+ * theta; BLK consecutive points at a time, split by form (long or short
+ * waves) where a block has both. */
 static void eval_points(const mfs_disp_plan *dp, const disp_stress *at, size_t s0, size_t ns,
                         size_t n, const double *k, const double *kappa, double c, double s,
                         double complex *omega2, size_t ld, first_fail *first)
 {
-  ray_pending pend[2]; /* short, long waves (not zeroed: filled as they come) */
-  pend[0].np = pend[1].np = 0;
-  for (size_t i = 0; i < n; i++) {
-    double kk[2], ph1, ph2;
-    if (k) {
-      kk[0] = k[2 * i];
-      kk[1] = k[2 * i + 1];
-    } else {
-      ray_k(dp, kappa[i], c, s, kk);
+  for (size_t i0 = 0; i0 < n; i0 += BLK) {
+    const int np = n - i0 < BLK ? (int)(n - i0) : BLK;
+    double ph1[BLK], ph2[BLK];
+    size_t idx[BLK];
+    int lw[BLK], nlw = 0;
+    for (int p = 0; p < np; p++) {
+      double kk[2];
+      if (k) {
+        kk[0] = k[2 * (i0 + p)];
+        kk[1] = k[2 * (i0 + p) + 1];
+      } else {
+        ray_k(dp, kappa[i0 + p], c, s, kk);
+      }
+      phases(dp, kk, ph1 + p, ph2 + p);
+      lw[p] = long_wave(dp, ph1[p], ph2[p]);
+      nlw += lw[p];
+      idx[p] = i0 + (size_t)p;
     }
-    phases(dp, kk, &ph1, &ph2);
-    int lw = long_wave(dp, ph1, ph2);
-    ray_pending *b = pend + lw;
-    b->idx[b->np] = i;
-    b->ph1[b->np] = ph1;
-    b->ph2[b->np] = ph2;
-    if (++b->np == BLK)
-      ray_block(dp, b, lw, at, s0, ns, ld, omega2, first);
+    if (nlw == 0 || nlw == np) {
+      ray_block(dp, np, idx, ph1, ph2, nlw > 0, at, s0, ns, ld, omega2, first);
+      continue;
+    }
+    for (int form = 0; form < 2; form++) { /* a block with both forms: each on its own */
+      double q1[BLK], q2[BLK];
+      size_t qi[BLK];
+      int nq = 0;
+      for (int p = 0; p < np; p++)
+        if (lw[p] == form) {
+          q1[nq] = ph1[p];
+          q2[nq] = ph2[p];
+          qi[nq++] = idx[p];
+        }
+      ray_block(dp, nq, qi, q1, q2, form, at, s0, ns, ld, omega2, first);
+    }
   }
-  for (int lw = 0; lw < 2; lw++)
-    if (pend[lw].np)
-      ray_block(dp, pend + lw, lw, at, s0, ns, ld, omega2, first);
 }
 
 mfs_status mfs_disp_ray(const mfs_disp_plan *dp, const double *sbar, size_t nsbar, double theta,
