@@ -304,7 +304,7 @@ int main(int argc, char **argv)
     s.fix_mask = mask;
     pm = mfs_pmodel_alloc(&s, fcomm, 1, &pst, NULL);
     if (size > 1)
-      CHECK(!pm && pst == MFS_EINVAL, "a rank without rows: %s, want MFS_EINVAL",
+      CHECK(!pm && pst == MFS_ETOOSMALL, "a rank without rows: %s, want MFS_ETOOSMALL",
             mfs_strerror(pst));
     else
       CHECK(pm != NULL, "one free particle on one rank: %s", mfs_strerror(pst));

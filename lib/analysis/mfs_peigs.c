@@ -636,7 +636,7 @@ fail:
    * more ranks than the model has room for */
   unsigned long long mine = pm->nrow, least = 0;
   MPI_Allreduce(&mine, &least, 1, MPI_UNSIGNED_LONG_LONG, MPI_MIN, c);
-  st = pm->ndofs < 1 || least == 0 ? MFS_EINVAL : MFS_OK;
+  st = pm->ndofs < 1 ? MFS_EINVAL : least == 0 ? MFS_ETOOSMALL : MFS_OK;
   if (st != MFS_OK)
     goto done;
 

@@ -92,9 +92,9 @@ typedef struct {
  * Gershgorin and element bounds: `mfstab bound`).  The spec is checked as
  * mfs_model_alloc checks it, and the same statuses are returned (NULL and
  * *status; MFS_ESINGULAR with *bad the global index of the failing
- * quadrature point, on every rank); also MFS_EINVAL when a rank owns no free
- * degree of freedom (more ranks than the model has cells for) and
- * MFS_ENOTSUP without MPI.  spec->fix_mask is read during the call only. */
+ * quadrature point, on every rank; MFS_EINVAL when every particle is
+ * fixed); also MFS_ETOOSMALL when a rank owns no free degree of freedom
+ * (more ranks than the model has cells for) and MFS_ENOTSUP without MPI.  spec->fix_mask is read during the call only. */
 mfs_pmodel *mfs_pmodel_alloc(const mfs_model_spec *spec, int comm, int assemble,
                              mfs_status *status, size_t *bad);
 void mfs_pmodel_free(mfs_pmodel *pm);
