@@ -8,6 +8,7 @@
 #   3. mfstab bound on 1 and 2 ranks: the CSV identical byte for byte
 #   4. what is not distributed: one line, exit 2, no output file; -o written
 #      once, by rank 0, no temporary file left
+#   5. allocation failures on 2 ranks (a sample): exit 1, one line, no file
 # Skipped (exit 77) with a message where mpirun is missing or mfstab was
 # built without MPI (then the library's stubs and the refusal of a launch on
 # 2 ranks are still checked).
@@ -156,5 +157,32 @@ mkdir "$tmp/d"
 "${MR[@]}" -np 2 "$M" bound --nodes 41 -o "$tmp/d/b.csv" 2>"$tmp/err.txt"
 if [ "$(ls -A "$tmp/d")" = b.csv ] && [ "$(wc -l <"$tmp/d/b.csv")" -eq 2 ]; then ok; else
   bad "mpirun -np 2 mfstab bound -o: the directory holds '$(ls -A "$tmp/d" | tr '\n' ' ')'"; fi
+# 5. allocation failures on 2 ranks (tests/test_alloc.sh's rule, every allocation of a sample
+# of about 8 spread over the run): exit 1, one line saying "out of memory", no file, no hang
+sweep() {
+  local what="mpirun -np 2 mfstab $*" K k rc n badk=0
+  rm -rf "$tmp/af" "$tmp/count"
+  mkdir "$tmp/af"
+  "${MR[@]}" -np 2 -x MFSTAB_ALLOC_COUNT="$tmp/count" "$M" "$@" -o "$tmp/af/good.csv" 2>/dev/null
+  K=$(cat "$tmp/count" 2>/dev/null || echo 0)
+  rm -f "$tmp/af/good.csv"
+  [ "$K" -gt 0 ] || { bad "$what: no allocation count"; return; }
+  for ((k = 1; k <= K; k += (K + 7) / 8)); do
+    timeout 60 "${MR[@]}" -np 2 -x MFSTAB_ALLOC_FAIL=$k "$M" "$@" -o "$tmp/af/o.csv" \
+      >"$tmp/af.out" 2>"$tmp/af.err"
+    rc=$?
+    n=$(wc -l <"$tmp/af.err")
+    if [ $rc -ne 1 ] || [ "$n" -ne 1 ] || ! grep -q "out of memory" "$tmp/af.err" ||
+       [ -n "$(ls -A "$tmp/af")" ] || [ -s "$tmp/af.out" ]; then
+      badk=$((badk + 1))
+      [ $badk -le 3 ] && bad "$what: allocation $k of $K failing: exit $rc, $n lines: $(head -c 200 "$tmp/af.err" | tr '\n' '|') files: $(ls -A "$tmp/af" | tr '\n' ' ')"
+      rm -f "$tmp/af/"*
+    fi
+  done
+  [ $badk -eq 0 ] && ok
+}
+sweep eigs --dim 2 --nodes 12,10
+sweep bound --dim 2 --nodes 12,10 --perturb 0.1
+
 echo "test_mpi: $pass passed, $fail failed"
 [ $fail -eq 0 ]

@@ -458,8 +458,10 @@ static mfs_status build_halo(mfs_pmodel *pm, long *colmap)
   int *rd = mfs_calloc((size_t)P + 1, sizeof *rd), *sd = mfs_calloc((size_t)P + 1, sizeof *sd);
   long *req = NULL, *got = NULL;
   size_t *fill = mfs_calloc((size_t)P, sizeof *fill);
-  if (!rc || !sc || !rd || !sd || !fill)
+  st = agree(pm->comm, rc && sc && rd && sd && fill ? MFS_OK : MFS_ENOMEM); /* before a collective */
+  if (st != MFS_OK)
     goto done;
+  st = MFS_ENOMEM;
   for (size_t r = 0; r < pm->nrow; r++)
     colmap[pm->rlocal[r]] = -2; /* owned: not halo */
   for (size_t ld = 0; ld < nld; ld++)
@@ -473,8 +475,10 @@ static mfs_status build_halo(mfs_pmodel *pm, long *colmap)
   pm->nhalo = (size_t)rd[P];
   req = mfs_malloc((pm->nhalo ? pm->nhalo : 1) * sizeof *req);
   got = mfs_malloc((sd[P] ? (size_t)sd[P] : 1) * sizeof *got);
-  if (!req || !got)
+  st = agree(pm->comm, req && got ? MFS_OK : MFS_ENOMEM);
+  if (st != MFS_OK)
     goto done;
+  st = MFS_ENOMEM;
   for (size_t ld = 0; ld < nld; ld++) {
     if (colmap[ld] < 0)
       continue;
