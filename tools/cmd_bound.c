@@ -40,7 +40,9 @@ static const char about[] =
   "  (unsafe: 1 above 2/sqrt(lambda_lanczos) >= dt_crit, 0 at most dt_certified, else\n"
   "  empty; empty without --certify)\n"
   "  with --certify: lambda_lanczos,sigma_certified,dt_certified,certify_margin,\n"
-  "  certify_factorizations\n";
+  "  certify_factorizations\n"
+  "Under mpirun -np N the Gershgorin and element bounds run over the ranks (docs/parallel.md);\n"
+  "--certify needs one process.\n";
 
 /* The plan of the model (geometry, neighbour lists, shape table), for the
  * Gershgorin rows and, on a set or a perturbed lattice, the element bound. */
