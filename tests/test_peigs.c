@@ -165,6 +165,18 @@ static void compare(const mfs_model_spec *s, const char *what, int with_lambda)
     double lall = 0.0;
     MPI_Allreduce(&lp, &lall, 1, MPI_DOUBLE, MPI_MAX, MPI_COMM_WORLD);
     CHECK(lall == lp, "%s: lambda_max differs over the ranks: %.17g, max %.17g", what, lp, lall);
+    /* without the plan: the rows and lambda_max stay, the plan's bounds are refused */
+    mfs_pmodel_release_plan(pm);
+    double l2 = 0.0;
+    pst = mfs_peig_max(pm, &eo, &l2, &ip);
+    CHECK(pst == MFS_OK && l2 == lp, "%s: lambda_max after the plan's release %.17g, before %.17g (%s)",
+          what, l2, lp, mfs_strerror(pst));
+    CHECK(mfs_pmodel_bound(pm, &bp) == MFS_EINVAL, "%s: the element bound without the plan", what);
+    st = mfs_pmodel_gershgorin(pm, &gp);
+    CHECK(st == MFS_OK && gp.lambda == gs.lambda, "%s: the assembled Gershgorin bound after the release",
+          what);
+    mfs_pmodel_sizes(pm, &in);
+    CHECK(in.plan_nnz > 0 && in.local_points > 0, "%s: the plan's sizes are kept", what);
   }
   mfs_pmodel_free(pm);
 

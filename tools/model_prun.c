@@ -65,6 +65,7 @@ void model_prun(const model_cmd *c, const run_opts *o, run_result *r)
   mfs_status st = mfs_pmodel_bound(pm, &r->br);
   if (st != MFS_OK)
     cli_die(1, "element bound: %s", mfs_strerror(st));
+  mfs_pmodel_release_plan(pm); /* as model_run: the rows stay */
   r->bound_valid = !d->consistent_mass && r->br.negative_phi == 0;
   if (in.dofs < 2)
     cli_die(2, "the model has %zu free degree of freedom; use more particles", in.dofs);

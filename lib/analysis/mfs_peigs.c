@@ -26,6 +26,11 @@ void mfs_pmodel_free(mfs_pmodel *pm)
   (void)pm;
 }
 
+void mfs_pmodel_release_plan(mfs_pmodel *pm)
+{
+  (void)pm;
+}
+
 void mfs_pmodel_sizes(const mfs_pmodel *pm, mfs_pmodel_info *info)
 {
   (void)pm;
@@ -120,6 +125,7 @@ struct mfs_pmodel {
   mfs_material mat;
   size_t np, nq, ndofs;   /* the whole model: particles, points, free dofs */
   size_t nown;            /* owned particles */
+  size_t nlq, plan_nnz;   /* sizes of the local plan, kept when it is released */
   /* the local part: particles and points in the global order */
   mfs_particles *p;
   mfs_quad *q;
@@ -717,6 +723,20 @@ done:
   return pm;
 }
 
+void mfs_pmodel_release_plan(mfs_pmodel *pm)
+{
+  if (!pm)
+    return;
+  if (pm->pl)
+    pm->plan_nnz = mfs_plan_nnz(pm->pl);
+  if (pm->q)
+    pm->nlq = pm->q->n;
+  mfs_plan_free(pm->pl);
+  mfs_quad_free(pm->q);
+  pm->pl = NULL;
+  pm->q = NULL;
+}
+
 void mfs_pmodel_sizes(const mfs_pmodel *pm, mfs_pmodel_info *info)
 {
   size_t sent = pm->sptr ? pm->sptr[pm->nnb] : 0;
@@ -727,13 +747,13 @@ void mfs_pmodel_sizes(const mfs_pmodel *pm, mfs_pmodel_info *info)
                             .dofs = pm->ndofs,
                             .own_particles = pm->nown,
                             .local_particles = pm->p->n,
-                            .local_points = pm->q->n,
+                            .local_points = pm->q ? pm->q->n : pm->nlq,
                             .rows = pm->nrow,
                             .halo = pm->nhalo,
                             .sent = sent,
                             .neighbours = pm->nnb,
                             .nnz = pm->K ? pm->K->ptr[pm->K->nrow] : 0,
-                            .plan_nnz = mfs_plan_nnz(pm->pl)};
+                            .plan_nnz = pm->pl ? mfs_plan_nnz(pm->pl) : pm->plan_nnz};
 }
 
 long mfs_pmodel_row_dof(const mfs_pmodel *pm, size_t i)
@@ -844,6 +864,8 @@ mfs_status mfs_pmodel_gershgorin(const mfs_pmodel *pm, mfs_gershgorin_result *r)
       size_t ld = pm->rlocal[i];
       gersh_add(&g, s, pm->ml[ld], pm->pg[ld / (size_t)ndof] * (size_t)ndof + ld % (size_t)ndof);
     }
+  } else if (st == MFS_OK && !pm->pl) {
+    st = MFS_EINVAL; /* neither rows nor plan */
   } else if (st == MFS_OK) { /* as mfs_gershgorin_plan: streamed rows, first-appearance order */
     mfs_forms f = mfs_forms_stiffness(&pm->mat);
     mfs_row row;
@@ -906,7 +928,7 @@ typedef struct {
 mfs_status mfs_pmodel_bound(const mfs_pmodel *pm, mfs_bound_result *r)
 {
   memset(r, 0, sizeof *r);
-  if (!pm || !(pm->mat.density > 0.0))
+  if (!pm || !pm->pl || !(pm->mat.density > 0.0))
     return MFS_EINVAL;
   const int dim = pm->dim;
   if (mfs_plan_ncomp(pm->pl) < 1 + dim ||

@@ -99,6 +99,13 @@ mfs_pmodel *mfs_pmodel_alloc(const mfs_model_spec *spec, int comm, int assemble,
                              mfs_status *status, size_t *bad);
 void mfs_pmodel_free(mfs_pmodel *pm);
 
+/* Drop the local plan (neighbour lists, shape table) and quadrature points,
+ * which hold a good part of a rank's memory, once the element bound is
+ * computed (as mfs_model_release_plan): the assembled rows, the masses and
+ * mfs_peig_max stay; mfs_pmodel_bound and the streamed Gershgorin bound then
+ * return MFS_EINVAL.  Local, no communication. */
+void mfs_pmodel_release_plan(mfs_pmodel *pm);
+
 /* Sizes of this rank's part (local to the rank, no communication). */
 void mfs_pmodel_sizes(const mfs_pmodel *pm, mfs_pmodel_info *info);
 
