@@ -738,10 +738,16 @@ static size_t free_rows(size_t n, const unsigned char *fixed, int *prow, int *pa
   return k;
 }
 
-/* The distinct free columns of row I into cols (mark[J] == tag: met);
- * returns their count. */
+enum { PATTERN_WORDS = 1024 }; /* the bitmaps of a row's window of columns: 65536 particles */
+
+/* The distinct free columns of row I, sorted, into cols (if not NULL);
+ * returns their count.  The columns lie between the smallest first and the
+ * largest last entry of the (sorted) lists of the points that see I: where
+ * that window is at most 64 PATTERN_WORDS wide (lattices and sorted sets), a
+ * bitmap of it gives them in order without a sort; else a marker (mark[J] ==
+ * tag: met) and an insertion sort. */
 static size_t pattern_row(const mfs_plan *pl, size_t I, const int *prow, int *mark, int tag,
-                          int *cols)
+                          uint64_t *bits, int *cols)
 {
   const size_t *tptr;
   const int *tidx;
@@ -750,6 +756,49 @@ static size_t pattern_row(const mfs_plan *pl, size_t I, const int *prow, int *ma
   size_t nq, len = 0;
   const int *Q;
   mfs_plan_particle_points(pl, I, &nq, &Q);
+  int lo = INT32_MAX, hi = -1;
+  for (size_t t = 0; t < nq; t++) {
+    size_t e0 = tptr[Q[t]], e1 = tptr[Q[t] + 1];
+    if (e1 > e0) {
+      lo = tidx[e0] < lo ? tidx[e0] : lo;
+      hi = tidx[e1 - 1] > hi ? tidx[e1 - 1] : hi;
+    }
+  }
+  if (hi < lo)
+    return 0;
+  size_t nw = ((size_t)(hi - lo) >> 6) + 1;
+  if (nw <= PATTERN_WORDS) {
+    /* four bitmaps taken in turn, so that consecutive columns (which share a
+     * word) do not wait on each other's read-modify-write */
+    uint64_t *b0 = bits, *b1 = bits + nw, *b2 = bits + 2 * nw, *b3 = bits + 3 * nw;
+    memset(bits, 0, 4 * nw * sizeof *bits);
+    for (size_t t = 0; t < nq; t++) {
+      const int *ix = tidx + tptr[Q[t]];
+      size_t m = tptr[Q[t] + 1] - tptr[Q[t]], e = 0;
+      for (; e + 4 <= m; e += 4) {
+        unsigned d0 = (unsigned)(ix[e] - lo), d1 = (unsigned)(ix[e + 1] - lo);
+        unsigned d2 = (unsigned)(ix[e + 2] - lo), d3 = (unsigned)(ix[e + 3] - lo);
+        b0[d0 >> 6] |= (uint64_t)1 << (d0 & 63);
+        b1[d1 >> 6] |= (uint64_t)1 << (d1 & 63);
+        b2[d2 >> 6] |= (uint64_t)1 << (d2 & 63);
+        b3[d3 >> 6] |= (uint64_t)1 << (d3 & 63);
+      }
+      for (; e < m; e++) {
+        unsigned d = (unsigned)(ix[e] - lo);
+        b0[d >> 6] |= (uint64_t)1 << (d & 63);
+      }
+    }
+    for (size_t w = 0; w < nw; w++)
+      for (uint64_t b = b0[w] | b1[w] | b2[w] | b3[w]; b; b &= b - 1) {
+        int J = lo + (int)(w << 6) + __builtin_ctzll(b);
+        if (prow[J] >= 0) {
+          if (cols)
+            cols[len] = J;
+          len++;
+        }
+      }
+    return len;
+  }
   for (size_t t = 0; t < nq; t++)
     for (size_t e = tptr[Q[t]]; e < tptr[Q[t] + 1]; e++) {
       int J = tidx[e];
@@ -759,6 +808,14 @@ static size_t pattern_row(const mfs_plan *pl, size_t I, const int *prow, int *ma
           cols[len] = J;
         len++;
       }
+    }
+  if (cols) /* insertion: the rows are short */
+    for (size_t e = 1; e < len; e++) {
+      int v = cols[e];
+      size_t k = e;
+      for (; k > 0 && cols[k - 1] > v; k--)
+        cols[k] = cols[k - 1];
+      cols[k] = v;
     }
   return len;
 }
@@ -778,17 +835,20 @@ mfs_status mfs_assemble_pattern(const mfs_plan *pl, int ndof, const unsigned cha
   size_t *cnt = mfs_malloc((n ? n : 1) * sizeof *cnt);
   int *mark = mfs_malloc((size_t)nt * (n ? n : 1) * sizeof *mark);
   int *cols = mfs_malloc((size_t)nt * cap * sizeof *cols);
-  if (!prow || !cnt || !mark || !cols)
+  uint64_t *bits = mfs_malloc((size_t)nt * 4 * PATTERN_WORDS * sizeof *bits);
+  if (!prow || !cnt || !mark || !cols || !bits)
     goto done;
   size_t nf = free_rows(n, fixed, prow, NULL);
   for (size_t i = 0; i < (size_t)nt * n; i++)
     mark[i] = -1;
-  /* pass 1: the row lengths (a marker per thread, tagged by the row) */
+  /* pass 1: the row lengths (per thread a bitmap, or a marker tagged by the row) */
 #pragma omp parallel for schedule(dynamic, 1024) num_threads(nt)
-  for (size_t I = 0; I < n; I++)
-    cnt[I] = prow[I] >= 0 ? pattern_row(pl, I, prow, mark + (size_t)mfs_thread_id() * n, (int)I,
-                                        NULL)
+  for (size_t I = 0; I < n; I++) {
+    const int t = mfs_thread_id();
+    cnt[I] = prow[I] >= 0 ? pattern_row(pl, I, prow, mark + (size_t)t * n, (int)I,
+                                        bits + (size_t)t * 4 * PATTERN_WORDS, NULL)
                           : 0;
+  }
   size_t nnz = 0;
   for (size_t I = 0; I < n; I++)
     nnz += cnt[I] * nd * nd;
@@ -801,22 +861,15 @@ mfs_status mfs_assemble_pattern(const mfs_plan *pl, int ndof, const unsigned cha
         A->ptr[r + 1] = A->ptr[r] + cnt[I] * nd;
   for (size_t i = 0; i < (size_t)nt * n; i++)
     mark[i] = -1;
-  /* pass 2: the columns, sorted (insertion: the rows are short and come
-   * nearly in order), written at their rows' places */
+  /* pass 2: the columns in order, written at their rows' places */
 #pragma omp parallel for schedule(dynamic, 1024) num_threads(nt)
   for (size_t I = 0; I < n; I++) {
     if (prow[I] < 0)
       continue;
     const int t = mfs_thread_id();
     int *c = cols + (size_t)t * cap;
-    size_t len = pattern_row(pl, I, prow, mark + (size_t)t * n, (int)I, c);
-    for (size_t e = 1; e < len; e++) {
-      int v = c[e];
-      size_t k = e;
-      for (; k > 0 && c[k - 1] > v; k--)
-        c[k] = c[k - 1];
-      c[k] = v;
-    }
+    size_t len = pattern_row(pl, I, prow, mark + (size_t)t * n, (int)I,
+                             bits + (size_t)t * 4 * PATTERN_WORDS, c);
     size_t r0 = (size_t)prow[I] * nd;
     for (size_t a = 0; a < nd; a++) {
       int *ix = A->idx + A->ptr[r0 + a];
@@ -834,6 +887,7 @@ done:
   mfs_free(cnt);
   mfs_free(mark);
   mfs_free(cols);
+  mfs_free(bits);
   return st;
 }
 
