@@ -897,7 +897,8 @@ typedef struct {
   const int *prow;
   int ndof, pu;
   double density;
-  const double *vol;
+  const double *vol; /* the particles' volumes, or NULL: node_vol for every one */
+  double node_vol;
 } fill_ctx;
 
 /* A row of the sweep into its place in K, M and m. */
@@ -918,7 +919,7 @@ static mfs_status fill_row(void *vc, const mfs_row *r, size_t I, int thread)
         for (size_t b = 0; b < nd; b++)
           c->M->val[base + s * nd + b] = a == b ? r->M[s] : 0.0;
     if (c->m) /* sph: the particle masses rho V_I (eq. 51) */
-      c->m[rp * nd + a] = c->pu ? r->lump : c->density * c->vol[I];
+      c->m[rp * nd + a] = c->pu ? r->lump : c->density * (c->vol ? c->vol[I] : c->node_vol);
   }
   return MFS_OK;
 }
@@ -934,7 +935,13 @@ mfs_status mfs_assemble_fill(const mfs_plan *pl, const mfs_material *mat,
     return MFS_EINVAL;
   const size_t n = p->n;
   const int nd = mfs_physics_ndof(mat->physics);
-  const int pu = mfs_plan_disc(pl)->shape->partition_of_unity;
+  /* the lumped mass: rho times the integral of phi_I (the row sum of eq. 131)
+   * for a partition of unity; else the particle masses rho V_I (SPH, eq. 51),
+   * or rho times the lattice's area per node (eq. 119's node volume, asked for) */
+  const mfs_disc *d = mfs_plan_disc(pl);
+  const int pu = d->shape->partition_of_unity && !d->node_volume_mass;
+  const double *vol = d->node_volume_mass ? NULL : p->vol;
+  const double node_vol = d->node_volume_mass ? mfs_particles_node_volume(p) : 0.0;
   int *prow = mfs_malloc((n ? n : 1) * sizeof *prow), *part = mfs_malloc((n ? n : 1) * sizeof *part);
   if (!prow || !part) {
     mfs_free(prow);
@@ -955,13 +962,13 @@ mfs_status mfs_assemble_fill(const mfs_plan *pl, const mfs_material *mat,
   if (m && pu)
     f.lumped_density = mat->density;
   fill_ctx c = {.K = K, .M = M, .m = m, .prow = prow, .ndof = nd, .pu = pu,
-                .density = mat->density, .vol = p->vol};
+                .density = mat->density, .vol = vol, .node_vol = node_vol};
   if (!P) { /* the lumped mass alone: no pattern to fill */
     sweep_job j = {.pl = pl, .f = &f, .skip = fixed, .fn = fill_row, .ctx = &c};
     if (!pu) { /* nothing to assemble */
       for (size_t I = 0; I < n; I++)
         for (int a = 0; a < nd && prow[I] >= 0; a++)
-          m[(size_t)prow[I] * nd + a] = mat->density * p->vol[I];
+          m[(size_t)prow[I] * nd + a] = mat->density * (vol ? vol[I] : node_vol);
       st = MFS_OK;
       goto done;
     }
