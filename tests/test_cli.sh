@@ -635,5 +635,27 @@ for p in sys.argv[1:]:
 fi
 rm -rf "$tmp/repro"
 
+# --- lambda_max's stopping rule (issue 14): arpack_tol says the tolerance used; 1e-6, enough for
+# the step, against the default 1e-12 on the same perturbed model
+for t in tight loose; do
+  a=(); [ "$t" = loose ] && a=(--arpack-tol 1e-6)
+  run eigs --dim 2 --nodes 41,41 --perturb 0.2 --seed 3 "${a[@]}" -o "$tmp/tol_$t.csv"
+  check "eigs --arpack-tol ($t): exit $rc: $(head -c 200 "$err")" test "$rc" -eq 0
+done
+if [ -s "$tmp/tol_tight.csv" ] && [ -s "$tmp/tol_loose.csv" ]; then
+  tt=$(col "$tmp/tol_tight.csv" arpack_tol); lt=$(col "$tmp/tol_loose.csv" arpack_tol)
+  check "eigs: arpack_tol '$tt' by default, want 1e-12" awk -v v="$tt" 'BEGIN { exit !(v != "" && v == 1e-12) }'
+  check "eigs --arpack-tol 1e-6: arpack_tol '$lt', want 1e-6" awk -v v="$lt" 'BEGIN { exit !(v != "" && v == 1e-6) }'
+  lt_l=$(col "$tmp/tol_tight.csv" lambda_max); ll=$(col "$tmp/tol_loose.csv" lambda_max)
+  check "eigs --arpack-tol 1e-6: lambda_max $ll against $lt_l at 1e-12: more than 1e-6 apart" \
+    awk -v a="$ll" -v b="$lt_l" 'BEGIN { d = a / b - 1; exit !(a != "" && b != "" && d <= 1e-6 && d >= -1e-6) }'
+  dtt=$(col "$tmp/tol_tight.csv" dt_crit); dtl=$(col "$tmp/tol_loose.csv" dt_crit)
+  check "eigs --arpack-tol 1e-6: dt_crit $dtl against $dtt: more than 5e-7 apart" \
+    awk -v a="$dtl" -v b="$dtt" 'BEGIN { d = a / b - 1; exit !(a != "" && b != "" && d <= 5e-7 && d >= -5e-7) }'
+  mt=$(col "$tmp/tol_tight.csv" arpack_matvecs); ml=$(col "$tmp/tol_loose.csv" arpack_matvecs)
+  check "eigs --arpack-tol 1e-6: $ml matvecs, not fewer than the $mt at 1e-12" test "$ml" -lt "$mt"
+  echo "eigs arpack_tol: 1e-12 $mt matvecs lambda_max $lt_l, 1e-6 $ml matvecs lambda_max $ll"
+fi
+
 echo "test_cli: $pass passed, $fail failed"
 [ "$fail" -eq 0 ]

@@ -5,6 +5,7 @@
  * with `mfstab bound` and `mfstab check` (the model: a lattice box, a
  * perturbed lattice or a particle file, the support in the user's terms, the
  * material in SI); and the data of Figs 17 and 18. */
+#include <float.h>
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
@@ -47,9 +48,10 @@ static const char about[] =
   "  smoothing_length,young_modulus,shear_modulus, then dofs,lambda_max,omega_max,bound,\n"
   "  bound_valid,negative_phi_points,bound_alpha,alpha,lambda_fourier,kappa_fourier,\n"
   "  theta_fourier,dt_crit,dt_bound,dt_alpha,dt_fourier,dt_rule_p,dt_rule_bulk,bound_ratio,\n"
-  "  arpack_iterations,arpack_matvecs,arpack_residual,particles,nonpositive_masses,min_mass,\n"
-  "  min_mass_particle,min_mass_x,min_mass_y,lambda_gershgorin,dt_gershgorin,gershgorin_ratio,\n"
-  "  dt_rule_<peer>,dt_rule_<peer>_unsafe (lammps_smd, sphinxsys, sphinxsys_pwave,\n"
+  "  arpack_iterations,arpack_matvecs,arpack_residual,arpack_tol,particles,nonpositive_masses,\n"
+  "  min_mass,min_mass_particle,min_mass_x,min_mass_y,lambda_gershgorin,dt_gershgorin,\n"
+  "  gershgorin_ratio,"
+  "dt_rule_<peer>,dt_rule_<peer>_unsafe (lammps_smd, sphinxsys, sphinxsys_pwave,\n"
   "  trixiparticles, dualsphysics)\n"
   "  with --certify: sigma_certified,dt_certified,certified_fraction,certify_margin,\n"
   "  certify_factorizations\n"
@@ -690,6 +692,8 @@ static void eigs_row(FILE *f, const model_cmd *c, const run_result *r, const eig
   else
     fputs(",,", f);
   eigs_put(f, r->have_lambda ? r->resid : NAN, 0);
+  /* the tolerance ARPACK stopped at (0: its machine precision, dlamch('E')) */
+  eigs_put(f, r->have_lambda ? (e->arpack_tol > 0.0 ? e->arpack_tol : 0.5 * DBL_EPSILON) : NAN, 0);
   fprintf(f, "%zu,%zu,", r->particles, r->nonpositive);
   eigs_put(f, r->min_mass, 0);
   size_t I = r->min_mass_particle;
@@ -825,7 +829,7 @@ int cmd_eigs(int argc, char **argv)
   fputs(",dofs,lambda_max,omega_max,bound,bound_valid,negative_phi_points,bound_alpha,alpha,"
         "lambda_fourier,kappa_fourier,theta_fourier,dt_crit,dt_bound,dt_alpha,dt_fourier,"
         "dt_rule_p,dt_rule_bulk,bound_ratio,arpack_iterations,arpack_matvecs,arpack_residual,"
-        "particles,nonpositive_masses,min_mass,min_mass_particle,min_mass_x,min_mass_y,"
+        "arpack_tol,particles,nonpositive_masses,min_mass,min_mass_particle,min_mass_x,min_mass_y,"
         "lambda_gershgorin,dt_gershgorin,gershgorin_ratio",
         f);
   rules_header(f);

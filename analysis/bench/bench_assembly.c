@@ -2,17 +2,31 @@
  *
  * Square lattice of n x n nodes (dx = 1, finite box), cubic kernel, linear
  * MLS, dilation D = 2, stress-point quadrature on quadrilaterals
- * (stress-quad), anti-plane scalar physics (C = rho = 1).  Phases:
+ * (stress-quad), anti-plane scalar physics (C = rho = 1).  Modes (column
+ * mode), each size and mode in a fresh process (its own peak memory):
  *
- *   lattice                 mfs_lattice_alloc
- *   quadrature              mfs_quad_alloc
- *   neighbour_search        mfs_plan_alloc, the symbolic plan: cell lists, the neighbour
- *                           lists of the quadrature points and their transpose
- *   shape_tables            mfs_plan_tabulate, the numeric plan: the shape-function table
- *   assembly_K              mfs_assemble_stiffness
- *   assembly_lumped_M       mfs_assemble_mass_lumped
- *   total                   the sum of the above; peak_rss_mb is the peak of the library pipeline
- *   reference_shape_tables  the same table by a straightforward per-point dense MLS:
+ *   model   what mfs_model_alloc does (finite models and the linear plate
+ *           solver alike): no shape table; the pattern once, then the values
+ *           filled into it by one sweep that evaluates the shape functions
+ *           block by block
+ *   table   the plan's table first (mfs_plan_tabulate), then the same
+ *           pattern and fill reading it (the solvers' Lagrangian tables; the
+ *           reference checks of the table run after it)
+ *   solver  mfs_solver2d_alloc on the same model (plane strain, free
+ *           edges): assembly and its stable step
+ *
+ * Phases:
+ *   lattice, quadrature     mfs_lattice_alloc, mfs_quad_alloc
+ *   neighbour_search        mfs_plan_alloc: cell lists, the lists of the points and their transpose
+ *   shape_tables            (table) mfs_plan_tabulate
+ *   pattern                 mfs_assemble_pattern: the CSR build (row lengths, sorted
+ *                           columns, ptr and idx); the fill then writes each row in place
+ *   fill                    mfs_assemble_fill: K and the lumped mass, one sweep (model:
+ *                           with the shape functions' evaluation)
+ *   total                   the sum; its ratio column: pattern / (pattern + fill), the
+ *                           share of the CSR build in the assembly
+ *   solver2d_alloc          (solver) the whole mfs_solver2d_alloc
+ *   reference_shape_tables  (table) the same table by a straightforward per-point dense MLS:
  *                           3x3 moment matrix in coordinates relative to the evaluation point,
  *                           inverse by LAPACKE_dgesv (identity right-hand side), explicit
  *                           products for phi and grad phi (Belytschko et al. 1994)
@@ -20,18 +34,21 @@
  *
  * error:  lattice: |sum V - area| / area; quadrature: |sum w - area| / area;
  *         shape_tables: max |sum_J phi_J - 1| and |sum_J grad phi_J| over the points;
- *         assembly_K: |K 1|_inf / max |K_IJ|; assembly_lumped_M: |sum m - rho area| / (rho area);
- *         reference_*: max abs difference from the shape_tables table.
- * ratio:  reference_*: reference seconds / shape_tables seconds.  Empty on the other rows.
+ *         fill: |K 1|_inf / max |K_IJ| (and the mass: |sum m - rho area| / (rho area) in
+ *         mass_error); reference_*: max abs difference from the shape_tables table.
+ * ratio:  reference_*: reference seconds / shape_tables seconds; total: the CSR share.
  * seconds is wall-clock time; user_s and sys_s the CPU time of the phase (sys_s is
- * mostly page faults on first touch of new memory).
+ * mostly page faults on first touch of new memory); threads the OpenMP threads.
+ * peak_rss_mb: the process's peak so far; nnz_K the entries of K; bytes_per_nnz the
+ * peak (bytes) / nnz_K on the total row.
+ * limit_s: the bytes the phase must write (lists 4 B, table 24 B per list entry; K's
+ * idx 4 B and val 8 B per entry, 8 B per row) at the measured memory bandwidth
+ * (bench_common.h; bandwidth_gbs column), the physical lower bound of its time;
+ * fraction = limit_s / seconds.  The work is compute-bound, so the fraction is small.
  *
- * Each size runs in a forked child, so peak_rss_mb (getrusage ru_maxrss, the
- * process peak so far) belongs to that size alone.  Single-threaded.
- *
- * usage: bench_assembly [-o FILE] [--repeat R] [--no-checks] [N ...]   (default N = 1000)
- * --repeat R runs each size R times (column rep); --no-checks stops after
- * `total` (for profiling the library alone). */
+ * usage: bench_assembly [-o FILE] [--repeat R] [--no-checks] [--mode model|table|solver|all]
+ *        [N ...]   (default N = 1000, mode all)
+ * --repeat R runs each size R times (column rep); --no-checks skips the reference tables. */
 #include <lapacke.h> /* includes <complex.h>: no variable may be called I */
 #include <math.h>
 #include <stdio.h>
@@ -44,6 +61,7 @@
 #include <unistd.h>
 
 #include "mfstab.h"
+#include "bench_common.h"
 
 #define DILATION 2.0
 #define NCOMP 3 /* phi, d/dx, d/dy */
@@ -90,20 +108,36 @@ static double peak_rss_mb(void)
 typedef struct {
   FILE *f;
   int n_side, rep;
-  size_t nodes, nq;
+  const char *mode;
+  size_t nodes, nq, nnz;
+  double bps; /* bandwidth, bytes per second */
 } row_ctx;
 
-/* One CSV row; error and ratio are left empty when negative. */
-static void row(const row_ctx *r, const char *phase, stamp t, double err, double ratio)
+/* One CSV row; error and ratio are left empty when negative, limit_s and
+ * fraction when bytes is 0. */
+static void row(const row_ctx *r, const char *phase, stamp t, double err, double ratio,
+                double bytes)
 {
-  fprintf(r->f, "%d,%zu,%zu,%d,%s,%.4f,%.4f,%.4f,%.1f,", r->n_side, r->nodes, r->nq, r->rep, phase,
-          t.wall, t.user, t.sys, peak_rss_mb());
+  double peak = peak_rss_mb();
+  fprintf(r->f, "%d,%zu,%zu,%d,%s,%d,%s,%.4f,%.4f,%.4f,%.1f,", r->n_side, r->nodes, r->nq, r->rep,
+          r->mode, bench_threads(), phase, t.wall, t.user, t.sys, peak);
+  if (r->nnz)
+    fprintf(r->f, "%zu", r->nnz);
+  fputc(',', r->f);
+  if (r->nnz && strcmp(phase, "total") == 0)
+    fprintf(r->f, "%.2f", peak * 1048576.0 / (double)r->nnz);
+  fputc(',', r->f);
   if (err >= 0.0)
     fprintf(r->f, "%.3e", err);
   fputc(',', r->f);
   if (ratio >= 0.0)
-    fprintf(r->f, "%.2f", ratio);
-  fputc('\n', r->f);
+    fprintf(r->f, "%.3f", ratio);
+  fputc(',', r->f);
+  if (bytes > 0.0 && t.wall > 0.0)
+    fprintf(r->f, "%.5f,%.4f", bytes / r->bps, bytes / r->bps / t.wall);
+  else
+    fputc(',', r->f);
+  fprintf(r->f, ",%.2f\n", r->bps * 1e-9);
   fflush(r->f);
 }
 
@@ -206,8 +240,55 @@ static double max_diff(size_t n, const double *x, const double *y)
   return e;
 }
 
-/* One size.  Returns 0, or 1 with a message on stderr. */
-static int bench(FILE *f, int n_side, int rep, int checks)
+/* |K 1|_inf / max |K_IJ| */
+static double k_ones(const mfs_csr *K)
+{
+  double kmax = 0.0, ymax = 0.0;
+  for (size_t i = 0; i < K->nrow; i++) {
+    double y = 0.0;
+    for (size_t e = K->ptr[i]; e < K->ptr[i + 1]; e++) {
+      y += K->val[e];
+      kmax = fabs(K->val[e]) > kmax ? fabs(K->val[e]) : kmax;
+    }
+    ymax = fabs(y) > ymax ? fabs(y) : ymax;
+  }
+  return ymax / kmax;
+}
+
+typedef enum { MODE_MODEL, MODE_TABLE, MODE_SOLVER } bench_mode;
+static const char *const mode_names[] = {"model", "table", "solver"};
+
+/* The solver mode: mfs_solver2d_alloc on the lattice (plane strain, free edges). */
+static int bench_solver2d(row_ctx *r, int n_side)
+{
+  mfs_model_spec ms = mfs_model_spec_default();
+  ms.disc.dim = 2;
+  ms.disc.source = (mfs_source){.lattice = MFS_LATTICE_SQUARE, .nx = n_side, .ny = n_side,
+                                .lx = (double)(n_side - 1), .ly = (double)(n_side - 1),
+                                .gamma = 1.0};
+  ms.disc.quadrature = &mfs_quad_stress_quad;
+  ms.disc.dilation = DILATION;
+  ms.disc.material = (mfs_material){.physics = MFS_PHYS_PLANE_STRAIN, .modulus = 1.0,
+                                    .poisson = 0.25, .density = 1.0};
+  mfs_status st;
+  stamp t0 = now();
+  mfs_solver2d *s = mfs_solver2d_alloc(&ms, &st, NULL);
+  stamp t = since(t0);
+  if (!s) {
+    fprintf(stderr, "bench_assembly: n = %d: solver: %s\n", n_side, mfs_strerror(st));
+    return 1;
+  }
+  r->nnz = s->model->K->ptr[s->model->K->nrow];
+  r->nq = s->model->q ? s->model->q->n : 0;
+  double bytes = 12.0 * (double)r->nnz + 8.0 * (double)s->model->K->nrow;
+  row(r, "solver2d_alloc", t, k_ones(s->model->K), -1.0, bytes);
+  row(r, "total", t, -1.0, -1.0, bytes);
+  mfs_solver2d_free(s);
+  return 0;
+}
+
+/* One size in one mode.  Returns 0, or 1 with a message on stderr. */
+static int bench(FILE *f, int n_side, int rep, bench_mode mode, int checks, double bps)
 {
   mfs_status st = MFS_OK, rc = 1;
   const char *what = "";
@@ -215,8 +296,10 @@ static int bench(FILE *f, int n_side, int rep, int checks)
   mfs_quad *q = NULL;
   mfs_plan *pl = NULL;
   mfs_csr *K = NULL;
-  double *m = NULL, *ones = NULL, *y = NULL, *ref = NULL;
-  row_ctx r = {f, n_side, rep, (size_t)n_side * (size_t)n_side, 0};
+  double *m = NULL, *ref = NULL;
+  row_ctx r = {f, n_side, rep, mode_names[mode], (size_t)n_side * (size_t)n_side, 0, 0, bps};
+  if (mode == MODE_SOLVER)
+    return bench_solver2d(&r, n_side);
   mfs_lattice_spec ls = {.dim = 2,
                          .lattice = MFS_LATTICE_SQUARE,
                          .nx = n_side,
@@ -246,79 +329,78 @@ static int bench(FILE *f, int n_side, int rep, int checks)
   if (!q)
     goto done;
   r.nq = q->n;
-  row(&r, "lattice", t_lat, fabs(sv - area) / area, -1.0);
+  row(&r, "lattice", t_lat, fabs(sv - area) / area, -1.0, 0.0);
   double sw = 0.0;
   for (size_t Q = 0; Q < q->n; Q++)
     sw += q->w[Q];
-  row(&r, "quadrature", t_quad, fabs(sw - area) / area, -1.0);
+  row(&r, "quadrature", t_quad, fabs(sw - area) / area, -1.0, 0.0);
   stamp t_total = add(t_lat, t_quad);
 
-  /* the plan: symbolic, then numeric */
+  /* the plan: symbolic, then (table) numeric */
   t0 = now();
   pl = mfs_plan_alloc(&disc, p, q, &st);
   stamp t_nb = since(t0);
   what = "neighbour search";
   if (!pl)
     goto done;
-  row(&r, "neighbour_search", t_nb, -1.0, -1.0);
-  t0 = now();
-  st = mfs_plan_tabulate(pl, 1, NULL);
-  stamp t_sh = since(t0);
-  what = "shape tables";
-  if (st != MFS_OK)
-    goto done;
-  row(&r, "shape_tables", t_sh, partition_error(pl), -1.0);
-  t_total = add(t_total, add(t_nb, t_sh));
+  size_t pnnz = mfs_plan_nnz(pl);
+  row(&r, "neighbour_search", t_nb, -1.0, -1.0, 8.0 * (double)pnnz);
+  t_total = add(t_total, t_nb);
+  stamp t_sh = {0, 0, 0};
+  if (mode == MODE_TABLE) {
+    t0 = now();
+    st = mfs_plan_tabulate(pl, 1, NULL);
+    t_sh = since(t0);
+    what = "shape tables";
+    if (st != MFS_OK)
+      goto done;
+    row(&r, "shape_tables", t_sh, partition_error(pl), -1.0, 24.0 * (double)pnnz);
+    t_total = add(t_total, t_sh);
+  }
 
   t0 = now();
-  st = mfs_assemble_stiffness(pl, &mat, &K);
-  stamp t_K = since(t0);
-  what = "stiffness";
+  st = mfs_assemble_pattern(pl, 1, NULL, &K);
+  stamp t_pat = since(t0);
+  what = "pattern";
   if (st != MFS_OK)
     goto done;
+  r.nnz = K->ptr[K->nrow];
+  row(&r, "pattern", t_pat, -1.0, -1.0, 4.0 * (double)r.nnz + 8.0 * (double)K->nrow);
   st = MFS_ENOMEM;
-  ones = malloc(p->n * sizeof *ones);
-  y = malloc(p->n * sizeof *y);
   m = malloc(p->n * sizeof *m);
-  if (!ones || !y || !m)
+  if (!m)
     goto done;
-  for (size_t i = 0; i < p->n; i++)
-    ones[i] = 1.0;
-  mfs_csr_matvec(K, ones, y);
-  double kmax = 0.0, ymax = 0.0;
-  for (size_t e = 0; e < K->ptr[K->nrow]; e++)
-    kmax = fabs(K->val[e]) > kmax ? fabs(K->val[e]) : kmax;
-  for (size_t i = 0; i < p->n; i++)
-    ymax = fabs(y[i]) > ymax ? fabs(y[i]) : ymax;
-  row(&r, "assembly_K", t_K, ymax / kmax, -1.0);
   t0 = now();
-  st = mfs_assemble_mass_lumped(pl, &mat, m);
-  stamp t_M = since(t0);
-  what = "lumped mass";
+  st = mfs_assemble_fill(pl, &mat, NULL, K, NULL, m, NULL);
+  stamp t_fill = since(t0);
+  what = "fill";
   if (st != MFS_OK)
     goto done;
   double sm = 0.0;
   for (size_t i = 0; i < p->n; i++)
     sm += m[i];
-  row(&r, "assembly_lumped_M", t_M, fabs(sm - mat.density * area) / (mat.density * area), -1.0);
-  t_total = add(t_total, add(t_K, t_M));
-  row(&r, "total", t_total, -1.0, -1.0);
+  fprintf(stderr, "bench_assembly: n = %d, %s: mass error %.3e\n", n_side, r.mode,
+          fabs(sm - mat.density * area) / (mat.density * area));
+  row(&r, "fill", t_fill, k_ones(K), -1.0, 8.0 * (double)r.nnz + 8.0 * (double)p->n);
+  t_total = add(t_total, add(t_pat, t_fill));
+  row(&r, "total", t_total, -1.0, t_pat.wall / (t_pat.wall + t_fill.wall),
+      12.0 * (double)r.nnz + 8.0 * (double)(K->nrow + p->n) +
+          (mode == MODE_TABLE ? 32.0 : 8.0) * (double)pnnz);
   mfs_csr_free(K);
   K = NULL;
-  if (!checks) {
+  if (!checks || mode != MODE_TABLE) {
     rc = 0;
     goto done;
   }
 
   /* cross-checks, after the library pipeline's peak */
-  size_t nnz = mfs_plan_nnz(pl);
   const size_t *tptr;
   const int *tidx;
   const double *tab;
   mfs_plan_table(pl, &tptr, &tidx, &tab);
   st = MFS_ENOMEM;
   what = "reference";
-  ref = malloc((nnz ? nnz : 1) * NCOMP * sizeof *ref);
+  ref = malloc((pnnz ? pnnz : 1) * NCOMP * sizeof *ref);
   if (!ref)
     goto done;
   for (int global = 0; global < 2; global++) {
@@ -326,7 +408,7 @@ static int bench(FILE *f, int n_side, int rep, int checks)
     size_t nfail = reference_tables(pl, global, ref);
     stamp t_ref = since(t0);
     row(&r, global ? "reference_shape_tables_global" : "reference_shape_tables", t_ref,
-        nfail ? INFINITY : max_diff(nnz * NCOMP, ref, tab), t_ref.wall / t_sh.wall);
+        nfail ? INFINITY : max_diff(pnnz * NCOMP, ref, tab), t_ref.wall / t_sh.wall, 0.0);
   }
   st = MFS_OK;
   rc = 0;
@@ -335,8 +417,6 @@ done:
     fprintf(stderr, "bench_assembly: n = %d: %s: %s\n", n_side, what, mfs_strerror(st));
   free(ref);
   free(m);
-  free(ones);
-  free(y);
   mfs_csr_free(K);
   mfs_plan_free(pl);
   mfs_quad_free(q);
@@ -347,12 +427,13 @@ done:
 int main(int argc, char **argv)
 {
   const char *outpath = NULL;
-  int sizes[64], ns = 0, checks = 1, reps = 1;
+  int sizes[64], ns = 0, checks = 1, reps = 1, mode_lo = MODE_MODEL, mode_hi = MODE_SOLVER;
   for (int i = 1; i < argc; i++) {
     if (strcmp(argv[i], "-h") == 0 || strcmp(argv[i], "--help") == 0) {
-      printf("usage: bench_assembly [-o FILE] [--repeat R] [--no-checks] [N ...]\n"
-             "  N x N square lattice (default 1000), each size R times (default 1) in a fresh\n"
-             "  process; --no-checks: library phases only\n");
+      printf("usage: bench_assembly [-o FILE] [--repeat R] [--no-checks] "
+             "[--mode model|table|solver|all] [N ...]\n"
+             "  N x N square lattice (default 1000), each size and mode R times (default 1) in\n"
+             "  a fresh process; --no-checks: no reference tables\n");
       return 0;
     }
     if (strcmp(argv[i], "--repeat") == 0) {
@@ -368,6 +449,20 @@ int main(int argc, char **argv)
     }
     if (strcmp(argv[i], "--no-checks") == 0) {
       checks = 0;
+      continue;
+    }
+    if (strcmp(argv[i], "--mode") == 0) {
+      const char *v = i + 1 < argc ? argv[++i] : "";
+      int k = -1;
+      for (int j = 0; j < 3; j++)
+        if (strcmp(v, mode_names[j]) == 0)
+          k = j;
+      if (k < 0 && strcmp(v, "all") != 0) {
+        fprintf(stderr, "bench_assembly: --mode: expected model, table, solver or all\n");
+        return 2;
+      }
+      mode_lo = k < 0 ? MODE_MODEL : k;
+      mode_hi = k < 0 ? MODE_SOLVER : k;
       continue;
     }
     if (strcmp(argv[i], "-o") == 0) {
@@ -394,21 +489,24 @@ int main(int argc, char **argv)
     fprintf(stderr, "bench_assembly: -o %s: cannot open\n", outpath);
     return 2;
   }
-  fprintf(f, "n_side,nodes,quad_points,rep,phase,seconds,user_s,sys_s,peak_rss_mb,error,ratio\n");
+  double bps = bench_bandwidth_bps();
+  fprintf(f, "n_side,nodes,quad_points,rep,mode,threads,phase,seconds,user_s,sys_s,peak_rss_mb,"
+             "nnz_K,bytes_per_nnz,error,ratio,limit_s,fraction,bandwidth_gbs\n");
   fflush(f);
   int rc = 0;
   for (int s = 0; s < ns; s++)
-    for (int rep = 1; rep <= reps; rep++) {
-      pid_t pid = fork(); /* a fresh process per run: its own peak RSS */
-      if (pid == 0) {
-        int c = bench(f, sizes[s], rep, checks);
-        fflush(f);
-        _exit(c);
+    for (int rep = 1; rep <= reps; rep++)
+      for (int mode = mode_lo; mode <= mode_hi; mode++) {
+        pid_t pid = fork(); /* a fresh process per run: its own peak RSS */
+        if (pid == 0) {
+          int c = bench(f, sizes[s], rep, (bench_mode)mode, checks, bps);
+          fflush(f);
+          _exit(c);
+        }
+        int status = 1;
+        if (pid < 0 || waitpid(pid, &status, 0) < 0 || !WIFEXITED(status) || WEXITSTATUS(status))
+          rc = 1;
       }
-      int status = 1;
-      if (pid < 0 || waitpid(pid, &status, 0) < 0 || !WIFEXITED(status) || WEXITSTATUS(status))
-        rc = 1;
-    }
   if (outpath && fclose(f) != 0)
     rc = 1;
   return rc;

@@ -11,6 +11,7 @@
 
 #include "mfs_eval.h"
 #include "mfs_status.h"
+#include "mfs_threads.h"
 
 /* Largest eigenvalue of a symmetric n x n matrix (n <= 3, row-major, destroyed),
  * by cyclic Jacobi rotations: accurate to rounding, no LAPACK call per point. */
@@ -156,35 +157,108 @@ static void result_add(mfs_bound_result *r, double lam, int neg, size_t Q, const
     r->negative_phi += mult;
 }
 
-mfs_status mfs_bound_plan(const mfs_plan *pl, const mfs_material *mat,
-                          const unsigned char *fixed, mfs_bound_result *r)
+/* The bound over the points of a plan, in parallel: each thread a
+ * contiguous range of points in increasing order, its partial result merged
+ * in thread order (a later range takes the maximum only when it is larger:
+ * the first point of the maximum, as the serial loop).  With the plan's
+ * table, or, without one, each point evaluated by the thread's evaluator
+ * (mfs_plan_eval_point: the table's values). */
+static mfs_status bound_plan(const mfs_plan *pl, const mfs_material *mat,
+                             const unsigned char *fixed, mfs_bound_result *r, size_t *bad)
 {
   result_init(r);
   if (!pl || !mat || !(mat->density > 0.0))
     return MFS_EINVAL;
-  const int dim = mfs_plan_particles(pl)->dim;
-  if (mfs_plan_ncomp(pl) < 1 + dim || (mat->physics == MFS_PHYS_PLANE_STRAIN && dim != 2))
+  const int dim = mfs_plan_particles(pl)->dim, table = mfs_plan_order(pl) >= 1;
+  const int ncomp = table ? mfs_plan_ncomp(pl) : mfs_shape_ncomp(dim, 1);
+  if (ncomp < 1 + dim || (mat->physics == MFS_PHYS_PLANE_STRAIN && dim != 2))
     return MFS_EINVAL;
-  unsigned char *act = NULL;
-  if (fixed) {
-    act = mfs_malloc(mfs_plan_max_neighbours(pl));
-    if (!act)
-      return MFS_ENOMEM;
+  const int nt = mfs_threads();
+  const size_t nq = mfs_plan_npoints(pl), mx = mfs_plan_max_neighbours(pl);
+  mfs_status st = MFS_ENOMEM;
+  mfs_bound_result *part = mfs_calloc((size_t)nt, sizeof *part);
+  unsigned char *act = mfs_malloc((size_t)nt * mx);
+  mfs_eval *ev = table ? NULL : mfs_calloc((size_t)nt, sizeof *ev);
+  double *row = table ? NULL : mfs_malloc((size_t)nt * mx * (size_t)ncomp * sizeof *row);
+  int *kept = table ? NULL : mfs_malloc((size_t)nt * mx * sizeof *kept);
+  mfs_status *tst = mfs_calloc((size_t)nt, sizeof *tst);
+  size_t *tbad = mfs_calloc((size_t)nt, sizeof *tbad);
+  if (!part || !act || !tst || !tbad || (!table && (!ev || !row || !kept)))
+    goto done;
+  for (int t = 0; t < nt && !table; t++)
+    if ((st = mfs_plan_evaluator(pl, 1, ev + t)) != MFS_OK)
+      goto done;
+#pragma omp parallel num_threads(nt)
+  {
+    const int t = mfs_thread_id();
+    mfs_bound_result *rt = part + t;
+    unsigned char *at = act + (size_t)t * mx;
+    tbad[t] = SIZE_MAX;
+#pragma omp for schedule(static)
+    for (size_t Q = 0; Q < nq; Q++) {
+      if (tst[t] != MFS_OK)
+        continue;
+      mfs_point pt;
+      mfs_plan_point(pl, Q, &pt);
+      if (!table) {
+        double *o = row + (size_t)t * mx * (size_t)ncomp;
+        mfs_status s = mfs_plan_eval_point(pl, ev + t, Q, kept + (size_t)t * mx, o, NULL);
+        if (s != MFS_OK) {
+          tst[t] = s;
+          tbad[t] = Q;
+          continue;
+        }
+        pt.phi = o;
+        pt.ncomp = ncomp;
+      }
+      if (fixed)
+        for (size_t J = 0; J < pt.nn; J++)
+          at[J] = !fixed[pt.idx[J]];
+      int neg;
+      double lam = mfs_bound_point(dim, mat, (int)pt.nn, pt.phi, pt.ncomp, fixed ? at : NULL, &neg);
+      result_add(rt, lam, neg, Q, pt.x, dim, 1);
+    }
   }
-  size_t nq = mfs_plan_npoints(pl);
-  for (size_t Q = 0; Q < nq; Q++) {
-    mfs_point pt;
-    mfs_plan_point(pl, Q, &pt);
-    if (act)
-      for (size_t J = 0; J < pt.nn; J++)
-        act[J] = !fixed[pt.idx[J]];
-    int neg;
-    double lam = mfs_bound_point(dim, mat, (int)pt.nn, pt.phi, pt.ncomp, act, &neg);
-    result_add(r, lam, neg, Q, pt.x, dim, 1);
+  st = MFS_OK;
+  for (int t = 0; t < nt; t++) { /* in thread order: increasing ranges of points */
+    if (tst[t] != MFS_OK && st == MFS_OK) {
+      st = tst[t]; /* the smallest failing point: the first failing range's */
+      if (bad)
+        *bad = tbad[t];
+    }
+    const mfs_bound_result *q = part + t;
+    if (q->points == 0)
+      continue;
+    if (q->lambda > r->lambda || r->points == 0) {
+      r->lambda = q->lambda;
+      r->argmax = q->argmax;
+      r->xmax[0] = q->xmax[0];
+      r->xmax[1] = q->xmax[1];
+    }
+    r->points += q->points;
+    r->negative_phi += q->negative_phi;
   }
   r->evaluated = nq;
+done:
+  if (ev)
+    for (int t = 0; t < nt; t++)
+      mfs_eval_free(ev + t);
+  mfs_free(ev);
+  mfs_free(row);
+  mfs_free(kept);
+  mfs_free(part);
   mfs_free(act);
-  return MFS_OK;
+  mfs_free(tst);
+  mfs_free(tbad);
+  if (st != MFS_OK)
+    result_init(r);
+  return st;
+}
+
+mfs_status mfs_bound_plan(const mfs_plan *pl, const mfs_material *mat,
+                          const unsigned char *fixed, mfs_bound_result *r)
+{
+  return bound_plan(pl, mat, fixed, r, NULL);
 }
 
 mfs_status mfs_bound_of_model(const mfs_model *m, mfs_bound_result *r)
@@ -315,8 +389,9 @@ static int window(int i, int n, int periodic, int B, int *out)
   return m;
 }
 
-/* The bound through a plan and its shape table: particle sets and perturbed
- * lattices, whose points have no translates. */
+/* The bound through a plan, points evaluated one by one (mfs_bound_plan
+ * without a table): particle sets and perturbed lattices, whose points have
+ * no translates. */
 static mfs_status bound_by_plan(const mfs_model_spec *spec, mfs_bound_result *r, size_t *bad)
 {
   mfs_particles *p = NULL;
@@ -330,9 +405,6 @@ static mfs_status bound_by_plan(const mfs_model_spec *spec, mfs_bound_result *r,
   pl = mfs_plan_alloc(disc, p, q, &st);
   if (!pl)
     goto done;
-  st = mfs_plan_tabulate(pl, 1, bad);
-  if (st != MFS_OK)
-    goto done;
   if (spec->fixed != MFS_FIX_NONE) {
     st = MFS_ENOMEM;
     fixed = mfs_malloc(p->n);
@@ -341,7 +413,7 @@ static mfs_status bound_by_plan(const mfs_model_spec *spec, mfs_bound_result *r,
     for (size_t I = 0; I < p->n; I++)
       fixed[I] = spec->fixed == MFS_FIX_MASK ? spec->fix_mask[I] != 0 : p->flags[I] != 0;
   }
-  st = mfs_bound_plan(pl, &disc->material, fixed, r);
+  st = bound_plan(pl, &disc->material, fixed, r, bad);
 done:
   mfs_free(fixed);
   mfs_plan_free(pl);
@@ -659,17 +731,114 @@ static void gersh_finish(mfs_gershgorin_result *r)
     r->lambda = NAN;
 }
 
+/* Per-thread partial results merged as the serial loop over the rows would
+ * have found them: the largest ratio at its smallest dof, the smallest mass
+ * at its smallest dof, the first nonpositive mass. */
+static void gersh_merge(mfs_gershgorin_result *r, const mfs_gershgorin_result *q)
+{
+  if (q->lambda > r->lambda || (q->lambda == r->lambda && q->lambda > 0.0 && q->argmax < r->argmax)) {
+    r->lambda = q->lambda;
+    r->argmax = q->argmax;
+  }
+  if (q->min_mass < r->min_mass ||
+      (q->min_mass == r->min_mass && q->argmin_mass < r->argmin_mass)) {
+    r->min_mass = q->min_mass;
+    r->argmin_mass = q->argmin_mass;
+  }
+  if (q->nonpositive > 0 && (r->nonpositive == 0 || q->first_nonpositive < r->first_nonpositive))
+    r->first_nonpositive = q->first_nonpositive;
+  r->nonpositive += q->nonpositive;
+}
+
 mfs_status mfs_gershgorin_csr(const mfs_csr *K, const double *m, const size_t *dof,
                               mfs_gershgorin_result *r)
 {
   gersh_init(r);
   if (!K || !m || K->nrow != K->ncol)
     return MFS_EINVAL;
-  for (size_t i = 0; i < K->nrow; i++) {
+  /* no allocation: the partial results of at most MFS_MAX_THREADS threads */
+  const int nt = mfs_threads() < MFS_MAX_THREADS ? mfs_threads() : MFS_MAX_THREADS;
+  mfs_gershgorin_result part[MFS_MAX_THREADS];
+#pragma omp parallel num_threads(nt)
+  {
+    mfs_gershgorin_result *q = part + mfs_thread_id();
+    gersh_init(q);
+#pragma omp for schedule(static)
+    for (size_t i = 0; i < K->nrow; i++) {
+      double s = 0.0;
+      for (size_t e = K->ptr[i]; e < K->ptr[i + 1]; e++)
+        s += fabs(K->val[e]);
+      gersh_row(q, s, m[i], dof ? dof[i] : i);
+    }
+  }
+  for (int t = 0; t < nt; t++)
+    gersh_merge(r, part + t);
+  gersh_finish(r);
+  return MFS_OK;
+}
+
+typedef struct {
+  const mfs_gershgorin_op *op;
+  const unsigned char *fixed;
+  const double *vol;
+  int pu;
+  mfs_gershgorin_result *part; /* per thread */
+} gop_ctx;
+
+/* Row I of the operator: the absolute sums of its ndof dof rows. */
+static mfs_status gersh_row_fn(void *vc, const mfs_row *row, size_t I, int thread)
+{
+  const gop_ctx *c = vc;
+  const mfs_gershgorin_op *op = c->op;
+  const int nd = op->ndof, nd2 = nd * nd;
+  double blk[4];
+  for (int a = 0; a < nd; a++) {
     double s = 0.0;
-    for (size_t e = K->ptr[i]; e < K->ptr[i + 1]; e++)
-      s += fabs(K->val[e]);
-    gersh_row(r, s, m[i], dof ? dof[i] : i);
+    for (size_t k = 0; k < row->len; k++) {
+      if (c->fixed && c->fixed[row->col[k]])
+        continue;
+      const double *b = row->K + k * (size_t)nd2;
+      if (op->block) {
+        op->block(op->ctx, row, k, blk);
+        b = blk;
+      }
+      for (int j = 0; j < nd; j++)
+        s += fabs(b[a * nd + j]);
+    }
+    size_t dof = I * (size_t)nd + (size_t)a;
+    double mi = op->mass ? op->mass[dof] : c->pu ? row->lump : op->density * c->vol[I];
+    gersh_row(c->part + thread, s, mi, dof);
+  }
+  return MFS_OK;
+}
+
+mfs_status mfs_gershgorin_op_plan(const mfs_plan *pl, const mfs_gershgorin_op *op,
+                                  const unsigned char *fixed, mfs_gershgorin_result *r,
+                                  size_t *bad)
+{
+  gersh_init(r);
+  if (!pl || !op || !op->forms || op->ndof < 1 || op->ndof > 2 ||
+      mfs_physics_ndof(op->forms->physics) != op->ndof || (!op->block && !op->forms->stiffness))
+    return MFS_EINVAL;
+  const int nt = mfs_threads();
+  const mfs_particles *p = mfs_plan_particles(pl);
+  mfs_forms f = *op->forms;
+  int pu = mfs_plan_disc(pl)->shape->partition_of_unity;
+  if (!op->mass && pu)
+    f.lumped_density = op->density;
+  mfs_gershgorin_result *part = mfs_malloc((size_t)nt * sizeof *part);
+  if (!part)
+    return MFS_ENOMEM;
+  for (int t = 0; t < nt; t++)
+    gersh_init(part + t);
+  gop_ctx c = {.op = op, .fixed = fixed, .vol = p->vol, .pu = pu, .part = part};
+  mfs_status st = mfs_row_sweep(pl, &f, fixed, gersh_row_fn, &c, bad);
+  for (int t = 0; t < nt && st == MFS_OK; t++)
+    gersh_merge(r, part + t);
+  mfs_free(part);
+  if (st != MFS_OK) {
+    gersh_init(r);
+    return st;
   }
   gersh_finish(r);
   return MFS_OK;
@@ -679,41 +848,10 @@ mfs_status mfs_gershgorin_plan(const mfs_plan *pl, const mfs_material *mat,
                                const unsigned char *fixed, mfs_gershgorin_result *r)
 {
   gersh_init(r);
-  if (!pl || !mat || mfs_plan_order(pl) < 1)
+  if (!pl || !mat)
     return MFS_EINVAL;
-  const mfs_particles *p = mfs_plan_particles(pl);
-  int ndof = mfs_physics_ndof(mat->physics), nd2 = ndof * ndof;
-  double *ml = mfs_malloc(p->n * (size_t)ndof * sizeof *ml);
-  if (!ml)
-    return MFS_ENOMEM;
-  mfs_status st = mfs_assemble_mass_lumped(pl, mat, ml);
   mfs_forms f = mfs_forms_stiffness(mat);
-  mfs_row row;
-  if (st == MFS_OK)
-    st = mfs_row_init(&row, pl, &f);
-  if (st != MFS_OK) {
-    mfs_free(ml);
-    return st;
-  }
-  for (size_t I = 0; I < p->n && st == MFS_OK; I++) {
-    if (fixed && fixed[I])
-      continue;
-    st = mfs_row_assemble(&row, pl, &f, I);
-    for (int a = 0; a < ndof && st == MFS_OK; a++) {
-      double s = 0.0;
-      for (size_t c = 0; c < row.len; c++) {
-        if (fixed && fixed[row.col[c]])
-          continue;
-        const double *blk = row.K + c * (size_t)nd2 + (size_t)a * ndof;
-        for (int b = 0; b < ndof; b++)
-          s += fabs(blk[b]);
-      }
-      size_t dof = I * (size_t)ndof + (size_t)a;
-      gersh_row(r, s, ml[dof], dof);
-    }
-  }
-  mfs_row_free(&row);
-  mfs_free(ml);
-  gersh_finish(r);
-  return st;
+  mfs_gershgorin_op op = {.forms = &f, .ndof = mfs_physics_ndof(mat->physics),
+                          .density = mat->density};
+  return mfs_gershgorin_op_plan(pl, &op, fixed, r, NULL);
 }

@@ -76,8 +76,11 @@ typedef struct {
 double mfs_bound_point(int dim, const mfs_material *mat, int nn, const double *tab, int ncomp,
                        const unsigned char *active, int *negative);
 
-/* The bound from a plan's shape table, O(table size).  fixed: p->n flags
- * (NULL: none fixed).  MFS_OK or MFS_EINVAL. */
+/* The bound from a plan's shape table, or without one the points evaluated
+ * one by one (the table's values, no table held), O(table size) time.
+ * fixed: p->n flags (NULL: none fixed).  In parallel, the same result for
+ * any number of threads.  MFS_OK, MFS_EINVAL, MFS_ESINGULAR (a point's
+ * evaluation), MFS_ENOMEM. */
 mfs_status mfs_bound_plan(const mfs_plan *pl, const mfs_material *mat,
                           const unsigned char *fixed, mfs_bound_result *r);
 
@@ -119,13 +122,38 @@ typedef struct {
 mfs_status mfs_gershgorin_csr(const mfs_csr *K, const double *m, const size_t *dof,
                               mfs_gershgorin_result *r);
 
-/* Streamed from a plan's shape table, row by row (mfs_row), without storing K:
- * the stiffness of mat restricted to the particles not fixed (fixed: p->n
- * flags, or NULL) with the lumped mass (mfs_assemble_mass_lumped).  The same
- * value as mfs_gershgorin_csr on the assembled model up to the order of the
- * sums.  MFS_OK, MFS_EINVAL (no table), MFS_ENOMEM. */
+/* Streamed from a plan row by row (mfs_row_sweep: its table, or the points
+ * evaluated block by block), without storing K: the stiffness of mat
+ * restricted to the particles not fixed (fixed: p->n flags, or NULL) with
+ * the lumped mass (mfs_assemble_mass_lumped).  The same value as
+ * mfs_gershgorin_csr on the assembled model up to the order of the sums;
+ * the same for any number of threads.  MFS_OK, MFS_EINVAL, MFS_ESINGULAR,
+ * MFS_ENOMEM. */
 mfs_status mfs_gershgorin_plan(const mfs_plan *pl, const mfs_material *mat,
                                const unsigned char *fixed, mfs_gershgorin_result *r);
+
+/* The same for any operator whose ndof x ndof blocks come from rows of
+ * forms: the linearization of a solver's force at its state (the stiffness
+ * with a tangent modulus; the gradient products A^{jl} contracted with a
+ * tangent by `block`; Eulerian terms), with the lumped mass or given
+ * masses.  Gershgorin's theorem holds for any square matrix, so the result
+ * bounds |lambda| of every eigenvalue of M^-1 A, symmetric or not. */
+typedef struct {
+  const mfs_forms *forms; /* what a row accumulates (its physics gives ndof) */
+  int ndof;
+  /* the block of column k of the row (ndof x ndof, row-major) from the
+   * row's accumulators; NULL: the stiffness block row->K + k ndof^2 */
+  void (*block)(const void *ctx, const mfs_row *row, size_t k, double *blk);
+  const void *ctx;
+  const double *mass;     /* p->n ndof masses; NULL: the lumped mass with density */
+  double density;
+} mfs_gershgorin_op;
+
+/* MFS_OK, MFS_EINVAL (forms and ndof disagree), the statuses of
+ * mfs_row_sweep (*bad the failing point). */
+mfs_status mfs_gershgorin_op_plan(const mfs_plan *pl, const mfs_gershgorin_op *op,
+                                  const unsigned char *fixed, mfs_gershgorin_result *r,
+                                  size_t *bad);
 
 /* Closed-form constants, lambda <= alpha c^2 / h^2 with h = a the support radius:
  *   dim 1: alpha = norm_1 max_z w'(z)^2/w(z)           (eq. 136; 12.42 for the cubic spline)

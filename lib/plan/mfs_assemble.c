@@ -2,8 +2,11 @@
 #include "mfs_alloc.h"
 
 #include <math.h>
+#include <stdint.h>
 #include <stdlib.h>
 #include <string.h>
+
+#include "mfs_threads.h"
 
 mfs_forms mfs_forms_stiffness(const mfs_material *m)
 {
@@ -37,11 +40,37 @@ void mfs_row_free(mfs_row *r)
   memset(r, 0, sizeof *r);
 }
 
-mfs_status mfs_row_init(mfs_row *r, const mfs_plan *pl, const mfs_forms *f)
+/* The most columns a row can have: the sum of the list lengths of the
+ * points that see the particle, at most n. */
+static size_t row_cap(const mfs_plan *pl)
+{
+  const mfs_particles *p = mfs_plan_particles(pl);
+  const size_t n = p->n;
+  const size_t *tptr;
+  const int *tidx;
+  const double *ttab;
+  mfs_plan_table(pl, &tptr, &tidx, &ttab);
+  size_t cap = 1;
+#pragma omp parallel for reduction(max : cap) schedule(static)
+  for (size_t I = 0; I < n; I++) {
+    size_t nq, s = 0;
+    const int *Q;
+    mfs_plan_particle_points(pl, I, &nq, &Q);
+    for (size_t t = 0; t < nq; t++)
+      s += tptr[Q[t] + 1] - tptr[Q[t]];
+    cap = s > cap ? s : cap;
+  }
+  return cap < n ? cap : (n ? n : 1);
+}
+
+/* mfs_row_init with the row capacity given; table: the plan's table must
+ * have the order the forms need (else the caller supplies chunks). */
+static mfs_status row_init_cap(mfs_row *r, const mfs_plan *pl, const mfs_forms *f, size_t cap,
+                               int table)
 {
   memset(r, 0, sizeof *r);
   int need2 = f->euler != MFS_EULER_NONE || f->ls_beta > 0.0;
-  if (mfs_plan_order(pl) < (need2 ? 2 : 1))
+  if (table && mfs_plan_order(pl) < (need2 ? 2 : 1))
     return MFS_EINVAL;
   if (need2 && mfs_plan_disc(pl)->kernel->cusp) /* no second derivative at the cone */
     return MFS_ENOTSUP;
@@ -61,31 +90,21 @@ mfs_status mfs_row_init(mfs_row *r, const mfs_plan *pl, const mfs_forms *f)
   r->qw = q->w;
   r->qx = q->x;
   r->qnode = q->node;
-  r->nc = mfs_plan_ncomp(pl);
+  r->nc = table ? mfs_plan_ncomp(pl) : mfs_shape_ncomp(p->dim, need2 ? 2 : 1);
   r->dim = p->dim;
-  /* a row has at most the sum of the list lengths of the points that see I */
-  size_t cap = 1;
-  for (size_t I = 0; I < n; I++) {
-    size_t nq, s = 0;
-    const int *Q;
-    mfs_plan_particle_points(pl, I, &nq, &Q);
-    for (size_t t = 0; t < nq; t++)
-      s += r->tptr[Q[t] + 1] - r->tptr[Q[t]];
-    cap = s > cap ? s : cap;
-  }
-  cap = cap < n ? cap : (n ? n : 1);
   r->ndof = mfs_physics_ndof(f->physics);
   r->gsz = euler2 ? 4 : 1;
   r->cap = cap;
+  size_t acc = cap + 1; /* and the discard slot */
   r->col = mfs_malloc(cap * sizeof *r->col);
   r->pcol = mfs_malloc(mfs_plan_max_neighbours(pl) * sizeof *r->pcol);
   r->mark = mfs_malloc((n ? n : 1) * sizeof *r->mark);
   if (f->stiffness)
-    r->K = mfs_malloc(cap * (size_t)(r->ndof * r->ndof) * sizeof *r->K);
+    r->K = mfs_malloc(acc * (size_t)(r->ndof * r->ndof) * sizeof *r->K);
   if (f->density != 0.0 || f->ls_beta > 0.0)
-    r->M = mfs_malloc(cap * sizeof *r->M);
+    r->M = mfs_malloc(acc * sizeof *r->M);
   if (f->euler != MFS_EULER_NONE)
-    r->G = mfs_malloc(cap * (size_t)r->gsz * sizeof *r->G);
+    r->G = mfs_malloc(acc * (size_t)r->gsz * sizeof *r->G);
   if (!r->col || !r->pcol || !r->mark || (f->stiffness && !r->K) ||
       ((f->density != 0.0 || f->ls_beta > 0.0) && !r->M) || (f->euler && !r->G))
     goto nomem;
@@ -107,9 +126,11 @@ nomem:
   return MFS_ENOMEM;
 }
 
-/* The 2D Eulerian term of one point (mfs_assemble.h): G^{jk}_IK += w (H T)_jk
- * with the point's motion T, minus w H at K = I (paper), plus w d grad
- * phi_I / d x_K (consistent). */
+mfs_status mfs_row_init(mfs_row *r, const mfs_plan *pl, const mfs_forms *f)
+{
+  return row_init_cap(r, pl, f, row_cap(pl), 1);
+}
+
 static int add_euler_2d(mfs_row *r, const mfs_plan *pl, const mfs_forms *f, size_t I,
                         const mfs_point *pt, size_t iI, const int *col)
 {
@@ -288,26 +309,53 @@ static inline int add_point(mfs_row *r, const mfs_plan *pl, const mfs_forms *f, 
   return MFS_OK;
 }
 
-mfs_status mfs_row_assemble(mfs_row *r, const mfs_plan *pl, const mfs_forms *f, size_t I)
+/* Point Q of the plan as a row reads it: its list, and its table row from
+ * the plan's table or from the chunk of the sweep. */
+static inline void row_point(const mfs_row *r, size_t Q, mfs_point *pt)
+{
+  size_t e0 = r->tptr[Q]; /* mfs_plan_point, from the cached table */
+  /* field by field: an initializer would clear the padding (a memset) */
+  pt->nn = r->tptr[Q + 1] - e0;
+  pt->idx = r->tidx + e0;
+  pt->phi = r->cslot ? r->ctab + (size_t)r->cslot[Q] * (size_t)r->nc : r->ttab + e0 * (size_t)r->nc;
+  pt->ncomp = r->nc;
+  pt->w = r->qw[Q];
+  pt->x = r->qx + Q * (size_t)r->dim;
+  pt->node = r->qnode[Q];
+}
+
+/* Zero the accumulators of column s. */
+static inline void row_zero(mfs_row *r, size_t s)
 {
   const int nd2 = r->ndof * r->ndof;
+  if (r->K) {
+    if (nd2 == 1)
+      r->K[s] = 0.0;
+    else
+      for (int k = 0; k < nd2; k++)
+        r->K[s * nd2 + k] = 0.0;
+  }
+  if (r->M)
+    r->M[s] = 0.0;
+  if (r->G)
+    for (int k = 0; k < r->gsz; k++)
+      r->G[s * (size_t)r->gsz + k] = 0.0;
+}
+
+mfs_status mfs_row_assemble(mfs_row *r, const mfs_plan *pl, const mfs_forms *f, size_t I)
+{
   for (size_t s = 0; s < r->len; s++) /* reset the marks of the last row */
     r->mark[r->col[s]] = -1;
   r->len = 0;
+  r->lump = 0.0;
   size_t nq;
   const int *Qs;
   mfs_plan_particle_points(pl, I, &nq, &Qs);
   int *col = r->pcol, st = MFS_OK;
+  const double rho = f->lumped_density;
   for (size_t t = 0; t < nq && st == MFS_OK; t++) {
-    size_t Q = (size_t)Qs[t], e0 = r->tptr[Q]; /* mfs_plan_point, from the cached table */
-    mfs_point pt; /* field by field: an initializer would clear the padding (a memset) */
-    pt.nn = r->tptr[Q + 1] - e0;
-    pt.idx = r->tidx + e0;
-    pt.phi = r->ttab + e0 * (size_t)r->nc;
-    pt.ncomp = r->nc;
-    pt.w = r->qw[Q];
-    pt.x = r->qx + Q * (size_t)r->dim;
-    pt.node = r->qnode[Q];
+    mfs_point pt;
+    row_point(r, (size_t)Qs[t], &pt);
     size_t iI = 0;
     for (size_t e = 0; e < pt.nn; e++) { /* columns met for the first time, and I's entry */
       int J = pt.idx[e];
@@ -316,23 +364,57 @@ mfs_status mfs_row_assemble(mfs_row *r, const mfs_plan *pl, const mfs_forms *f, 
         size_t s = r->len++;
         r->mark[J] = (int)s;
         r->col[s] = J;
-        if (r->K) {
-          if (nd2 == 1)
-            r->K[s] = 0.0;
-          else
-            for (int k = 0; k < nd2; k++)
-              r->K[s * nd2 + k] = 0.0;
-        }
-        if (r->M)
-          r->M[s] = 0.0;
-        if (r->G)
-          for (int k = 0; k < r->gsz; k++)
-            r->G[s * (size_t)r->gsz + k] = 0.0;
+        row_zero(r, s);
       }
       col[e] = r->mark[J];
     }
+    if (rho != 0.0) /* as mfs_assemble_mass_lumped's loop over the points adds it */
+      r->lump += rho * pt.w * pt.phi[iI * (size_t)pt.ncomp];
     st = add_point(r, pl, f, I, &pt, iI, col);
   }
+  return st;
+}
+
+/* Row I into given columns: cols[0..len) (particle indices, the row of a
+ * pattern); neighbours not among them must have their mark at r->cap (the
+ * discard slot: the fixed particles of the pattern). */
+static mfs_status row_assemble_into(mfs_row *r, const mfs_plan *pl, const mfs_forms *f, size_t I,
+                                    const int *cols, size_t len)
+{
+  for (size_t s = 0; s < len; s++) {
+    r->mark[cols[s]] = (int)s;
+    r->col[s] = cols[s];
+    row_zero(r, s);
+  }
+  row_zero(r, r->cap);
+  r->len = len;
+  r->lump = 0.0;
+  size_t nq;
+  const int *Qs;
+  mfs_plan_particle_points(pl, I, &nq, &Qs);
+  int *col = r->pcol, st = MFS_OK;
+  const double rho = f->lumped_density;
+  for (size_t t = 0; t < nq && st == MFS_OK; t++) {
+    mfs_point pt;
+    row_point(r, (size_t)Qs[t], &pt);
+    size_t iI = 0;
+    for (size_t e = 0; e < pt.nn; e++) {
+      int J = pt.idx[e];
+      iI = J == (int)I ? e : iI;
+      col[e] = r->mark[J];
+      if (col[e] < 0) { /* not in the pattern */
+        st = MFS_EINVAL;
+        break;
+      }
+    }
+    if (st != MFS_OK)
+      break;
+    if (rho != 0.0)
+      r->lump += rho * pt.w * pt.phi[iI * (size_t)pt.ncomp];
+    st = add_point(r, pl, f, I, &pt, iI, col);
+  }
+  for (size_t s = 0; s < len; s++)
+    r->mark[cols[s]] = -1;
   return st;
 }
 
@@ -373,49 +455,545 @@ void mfs_row_sort(mfs_row *r)
 
 /* Every row of the forms f into CSR: the stiffness blocks (want_mass = 0)
  * or the consistent mass on the diagonal of each block (want_mass = 1). */
-static mfs_status assemble_csr(const mfs_plan *pl, const mfs_forms *f, int want_mass,
+/* ------------------------------------------------------------------ */
+/* the row sweep: blocks of rows in parallel, with or without a table    */
+
+/* A thread's workspace. */
+typedef struct {
+  mfs_row r;
+  mfs_eval ev;     /* streaming: the plan's evaluator */
+  int *slot;       /* nq: entry of each point's row in ctab, or -1 */
+  int *need;       /* the points of the block */
+  int *kept;       /* a point's neighbours (equal to its list) */
+  double *ctab;    /* the block's table rows */
+  int *cols;       /* the pattern's columns of a row (fill) */
+} sweep_ws;
+
+/* What a sweep does. */
+typedef struct {
+  const mfs_plan *pl;
+  const mfs_forms *f;
+  const unsigned char *skip;
+  /* rows into a pattern (mfs_assemble_fill): pat (ndof rows per particle
+   * row), prow (particle -> pattern particle row, or -1), part (the inverse) */
+  const mfs_csr *pat;
+  int ndof;
+  const int *prow, *part;
+  mfs_row_fn fn;
+  void *ctx;
+} sweep_job;
+
+static void sweep_ws_free(sweep_ws *w)
+{
+  mfs_row_free(&w->r);
+  mfs_eval_free(&w->ev);
+  mfs_free(w->slot);
+  mfs_free(w->need);
+  mfs_free(w->kept);
+  mfs_free(w->ctab);
+  mfs_free(w->cols);
+}
+
+/* Rows per block: without a table the points of a block's boundary are
+ * evaluated by both neighbouring blocks, so blocks are large (a few percent
+ * of them on a lattice of 10^6 particles) but still several per thread. */
+static size_t sweep_block(size_t n, int table, int nt)
+{
+  if (table)
+    return 2048;
+  size_t b = n / (4 * (size_t)nt);
+  return b < 1024 ? 1024 : b > 65536 ? 65536 : b;
+}
+
+/* The points the rows of [r0, r1) need, counted (npts) with their entries
+ * (nent); with slot/need, also listed in need with their entries in slot.
+ * slot is left reset when need is NULL. */
+static void block_points(const mfs_plan *pl, size_t r0, size_t r1, int *slot, int *need,
+                         size_t *npts, size_t *nent)
+{
+  const size_t *tptr;
+  const int *tidx;
+  const double *ttab;
+  mfs_plan_table(pl, &tptr, &tidx, &ttab);
+  size_t np = 0, ne = 0;
+  for (size_t I = r0; I < r1; I++) {
+    size_t nq;
+    const int *Q;
+    mfs_plan_particle_points(pl, I, &nq, &Q);
+    for (size_t t = 0; t < nq; t++)
+      if (slot[Q[t]] < 0) {
+        slot[Q[t]] = (int)ne;
+        ne += tptr[Q[t] + 1] - tptr[Q[t]];
+        if (need)
+          need[np] = Q[t];
+        np++;
+      }
+  }
+  if (!need) /* reset: walk the rows again */
+    for (size_t I = r0; I < r1; I++) {
+      size_t nq;
+      const int *Q;
+      mfs_plan_particle_points(pl, I, &nq, &Q);
+      for (size_t t = 0; t < nq; t++)
+        slot[Q[t]] = -1;
+    }
+  *npts = np;
+  *nent = ne;
+}
+
+/* One block of rows; *bad_q / *bad_row and their statuses are the block's
+ * first failures (points: the smallest failing one). */
+static void sweep_block_run(const sweep_job *j, sweep_ws *w, size_t r0, size_t r1, int stream,
+                            int thread, size_t *bad_q, mfs_status *st_q, size_t *bad_row,
+                            mfs_status *st_row)
+{
+  const mfs_plan *pl = j->pl;
+  size_t np = 0, ne = 0;
+  if (stream) {
+    block_points(pl, r0, r1, w->slot, w->need, &np, &ne);
+    for (size_t k = 0; k < np; k++) {
+      size_t Q = (size_t)w->need[k];
+      mfs_status s = mfs_plan_eval_point(pl, &w->ev, Q, w->kept,
+                                         w->ctab + (size_t)w->slot[Q] * (size_t)w->r.nc, NULL);
+      if (s != MFS_OK && Q < *bad_q) {
+        *bad_q = Q;
+        *st_q = s;
+      }
+    }
+  }
+  if (*bad_q == SIZE_MAX)
+    for (size_t I = r0; I < r1; I++) {
+      if (j->skip && j->skip[I])
+        continue;
+      mfs_status s;
+      if (j->pat) {
+        size_t rp = (size_t)j->prow[I], nd = (size_t)j->ndof, e0 = j->pat->ptr[rp * nd];
+        size_t len = (j->pat->ptr[rp * nd + 1] - e0) / nd;
+        for (size_t c = 0; c < len; c++)
+          w->cols[c] = j->part[(size_t)j->pat->idx[e0 + c * nd] / nd];
+        s = len <= w->r.cap ? row_assemble_into(&w->r, pl, j->f, I, w->cols, len) : MFS_EINVAL;
+      } else {
+        s = mfs_row_assemble(&w->r, pl, j->f, I);
+      }
+      if (s == MFS_OK)
+        s = j->fn(j->ctx, &w->r, I, thread);
+      if (s != MFS_OK) {
+        *bad_row = I;
+        *st_row = s;
+        break;
+      }
+    }
+  if (stream)
+    for (size_t k = 0; k < np; k++)
+      w->slot[w->need[k]] = -1;
+}
+
+static mfs_status sweep_run(const sweep_job *j, size_t *bad)
+{
+  const mfs_plan *pl = j->pl;
+  const mfs_particles *p = mfs_plan_particles(pl);
+  const size_t n = p->n, nq = mfs_plan_npoints(pl);
+  const int need2 = j->f->euler != MFS_EULER_NONE || j->f->ls_beta > 0.0;
+  const int order = need2 ? 2 : 1, table = mfs_plan_order(pl) >= order, stream = !table;
+  const int nt = mfs_threads();
+  const size_t B = sweep_block(n, table, nt), nb = (n + B - 1) / B;
+  const size_t cap = row_cap(pl);
+  mfs_status st = MFS_ENOMEM;
+  sweep_ws *ws = mfs_calloc((size_t)nt, sizeof *ws);
+  size_t *bnp = NULL, *bne = NULL;
+  if (!ws)
+    return MFS_ENOMEM;
+  size_t max_np = 0, max_ne = 0;
+  for (int t = 0; t < nt; t++) { /* every workspace before the parallel part */
+    sweep_ws *w = ws + t;
+    if ((st = row_init_cap(&w->r, pl, j->f, cap, table)) != MFS_OK)
+      goto done;
+    st = MFS_ENOMEM;
+    if (j->pat && !(w->cols = mfs_malloc(cap * sizeof *w->cols)))
+      goto done;
+    if (j->pat) /* the pattern's fixed columns go to the discard slot */
+      for (size_t J = 0; J < n; J++)
+        if (j->prow[J] < 0)
+          w->r.mark[J] = (int)cap;
+    if (stream) {
+      if ((st = mfs_plan_evaluator(pl, order, &w->ev)) != MFS_OK)
+        goto done;
+      st = MFS_ENOMEM;
+      w->slot = mfs_malloc((nq ? nq : 1) * sizeof *w->slot);
+      w->kept = mfs_malloc(mfs_plan_max_neighbours(pl) * sizeof *w->kept);
+      if (!w->slot || !w->kept)
+        goto done;
+      for (size_t Q = 0; Q < nq; Q++)
+        w->slot[Q] = -1;
+    }
+  }
+  if (stream) { /* the largest block, to size the chunks */
+    bnp = mfs_malloc((nb ? nb : 1) * sizeof *bnp);
+    bne = mfs_malloc((nb ? nb : 1) * sizeof *bne);
+    if (!bnp || !bne)
+      goto done;
+#pragma omp parallel for schedule(dynamic, 1) num_threads(nt)
+    for (size_t b = 0; b < nb; b++) {
+      size_t r1 = (b + 1) * B < n ? (b + 1) * B : n;
+      block_points(pl, b * B, r1, ws[mfs_thread_id()].slot, NULL, bnp + b, bne + b);
+    }
+    for (size_t b = 0; b < nb; b++) {
+      max_np = bnp[b] > max_np ? bnp[b] : max_np;
+      max_ne = bne[b] > max_ne ? bne[b] : max_ne;
+    }
+    if (max_ne > (size_t)INT32_MAX) {
+      st = MFS_ENOMEM;
+      goto done;
+    }
+    for (int t = 0; t < nt; t++) {
+      sweep_ws *w = ws + t;
+      w->need = mfs_malloc((max_np ? max_np : 1) * sizeof *w->need);
+      w->ctab = mfs_malloc((max_ne ? max_ne : 1) * (size_t)w->r.nc * sizeof *w->ctab);
+      if (!w->need || !w->ctab)
+        goto done;
+      w->r.ctab = w->ctab;
+      w->r.cslot = w->slot;
+    }
+  }
+  /* a point that no particle sees has no row to be evaluated for: its
+   * evaluation (the table's) is checked here */
+  size_t bad_q = SIZE_MAX, bad_row = SIZE_MAX;
+  mfs_status st_q = MFS_OK, st_row = MFS_OK;
+  if (stream) {
+    const size_t *tptr;
+    const int *tidx;
+    const double *ttab;
+    mfs_plan_table(pl, &tptr, &tidx, &ttab);
+    for (size_t Q = 0; Q < nq && bad_q == SIZE_MAX; Q++)
+      if (tptr[Q + 1] == tptr[Q]) {
+        mfs_status s = mfs_plan_eval_point(pl, &ws[0].ev, Q, ws[0].kept, ws[0].ctab, NULL);
+        if (s != MFS_OK) {
+          bad_q = Q;
+          st_q = s;
+        }
+      }
+  }
+#pragma omp parallel for schedule(dynamic, 1) num_threads(nt)
+  for (size_t b = 0; b < nb; b++) {
+    const int t = mfs_thread_id();
+    size_t r1 = (b + 1) * B < n ? (b + 1) * B : n, bq = SIZE_MAX, br = SIZE_MAX;
+    mfs_status sq = MFS_OK, sr = MFS_OK;
+    sweep_block_run(j, ws + t, b * B, r1, stream, t, &bq, &sq, &br, &sr);
+    if (bq != SIZE_MAX || br != SIZE_MAX) {
+#pragma omp critical(mfs_row_sweep)
+      {
+        if (bq < bad_q) {
+          bad_q = bq;
+          st_q = sq;
+        }
+        if (br < bad_row) {
+          bad_row = br;
+          st_row = sr;
+        }
+      }
+    }
+  }
+  st = MFS_OK;
+  if (bad_q != SIZE_MAX) { /* the table would have failed first, at its smallest point */
+    st = st_q;
+    if (bad)
+      *bad = bad_q;
+  } else if (bad_row != SIZE_MAX) {
+    st = st_row;
+  }
+done:
+  for (int t = 0; t < nt; t++)
+    sweep_ws_free(ws + t);
+  mfs_free(ws);
+  mfs_free(bnp);
+  mfs_free(bne);
+  return st;
+}
+
+mfs_status mfs_row_sweep(const mfs_plan *pl, const mfs_forms *f, const unsigned char *skip,
+                         mfs_row_fn fn, void *ctx, size_t *bad)
+{
+  if (!pl || !f || !fn)
+    return MFS_EINVAL;
+  sweep_job j = {.pl = pl, .f = f, .skip = skip, .fn = fn, .ctx = ctx};
+  return sweep_run(&j, bad);
+}
+
+/* ------------------------------------------------------------------ */
+/* symbolic and numeric assembly of finite models                       */
+
+/* The free particles: prow[I] their number in order, or -1; part the
+ * inverse.  Returns the count. */
+static size_t free_rows(size_t n, const unsigned char *fixed, int *prow, int *part)
+{
+  size_t k = 0;
+  for (size_t I = 0; I < n; I++) {
+    prow[I] = fixed && fixed[I] ? -1 : (int)k;
+    if (prow[I] >= 0) {
+      if (part)
+        part[k] = (int)I;
+      k++;
+    }
+  }
+  return k;
+}
+
+enum { PATTERN_WORDS = 1024 }; /* the bitmaps of a row's window of columns: 65536 particles */
+
+/* The distinct free columns of row I, sorted, into cols (if not NULL);
+ * returns their count.  The columns lie between the smallest first and the
+ * largest last entry of the (sorted) lists of the points that see I: where
+ * that window is at most 64 PATTERN_WORDS wide (lattices and sorted sets), a
+ * bitmap of it gives them in order without a sort; else a marker (mark[J] ==
+ * tag: met) and an insertion sort. */
+static size_t pattern_row(const mfs_plan *pl, size_t I, const int *prow, int *mark, int tag,
+                          uint64_t *bits, int *cols)
+{
+  const size_t *tptr;
+  const int *tidx;
+  const double *ttab;
+  mfs_plan_table(pl, &tptr, &tidx, &ttab);
+  size_t nq, len = 0;
+  const int *Q;
+  mfs_plan_particle_points(pl, I, &nq, &Q);
+  int lo = INT32_MAX, hi = -1;
+  for (size_t t = 0; t < nq; t++) {
+    size_t e0 = tptr[Q[t]], e1 = tptr[Q[t] + 1];
+    if (e1 > e0) {
+      lo = tidx[e0] < lo ? tidx[e0] : lo;
+      hi = tidx[e1 - 1] > hi ? tidx[e1 - 1] : hi;
+    }
+  }
+  if (hi < lo)
+    return 0;
+  size_t nw = ((size_t)(hi - lo) >> 6) + 1;
+  if (nw <= PATTERN_WORDS) {
+    /* four bitmaps taken in turn, so that consecutive columns (which share a
+     * word) do not wait on each other's read-modify-write */
+    uint64_t *b0 = bits, *b1 = bits + nw, *b2 = bits + 2 * nw, *b3 = bits + 3 * nw;
+    memset(bits, 0, 4 * nw * sizeof *bits);
+    for (size_t t = 0; t < nq; t++) {
+      const int *ix = tidx + tptr[Q[t]];
+      size_t m = tptr[Q[t] + 1] - tptr[Q[t]], e = 0;
+      for (; e + 4 <= m; e += 4) {
+        unsigned d0 = (unsigned)(ix[e] - lo), d1 = (unsigned)(ix[e + 1] - lo);
+        unsigned d2 = (unsigned)(ix[e + 2] - lo), d3 = (unsigned)(ix[e + 3] - lo);
+        b0[d0 >> 6] |= (uint64_t)1 << (d0 & 63);
+        b1[d1 >> 6] |= (uint64_t)1 << (d1 & 63);
+        b2[d2 >> 6] |= (uint64_t)1 << (d2 & 63);
+        b3[d3 >> 6] |= (uint64_t)1 << (d3 & 63);
+      }
+      for (; e < m; e++) {
+        unsigned d = (unsigned)(ix[e] - lo);
+        b0[d >> 6] |= (uint64_t)1 << (d & 63);
+      }
+    }
+    for (size_t w = 0; w < nw; w++)
+      for (uint64_t b = b0[w] | b1[w] | b2[w] | b3[w]; b; b &= b - 1) {
+        int J = lo + (int)(w << 6) + __builtin_ctzll(b);
+        if (prow[J] >= 0) {
+          if (cols)
+            cols[len] = J;
+          len++;
+        }
+      }
+    return len;
+  }
+  for (size_t t = 0; t < nq; t++)
+    for (size_t e = tptr[Q[t]]; e < tptr[Q[t] + 1]; e++) {
+      int J = tidx[e];
+      if (mark[J] != tag && prow[J] >= 0) {
+        mark[J] = tag;
+        if (cols)
+          cols[len] = J;
+        len++;
+      }
+    }
+  if (cols) /* insertion: the rows are short */
+    for (size_t e = 1; e < len; e++) {
+      int v = cols[e];
+      size_t k = e;
+      for (; k > 0 && cols[k - 1] > v; k--)
+        cols[k] = cols[k - 1];
+      cols[k] = v;
+    }
+  return len;
+}
+
+mfs_status mfs_assemble_pattern(const mfs_plan *pl, int ndof, const unsigned char *fixed,
+                                mfs_csr **out)
+{
+  *out = NULL;
+  if (!pl || ndof < 1 || ndof > 2)
+    return MFS_EINVAL;
+  const size_t n = mfs_plan_particles(pl)->n, nd = (size_t)ndof;
+  const int nt = mfs_threads();
+  const size_t cap = row_cap(pl);
+  mfs_status st = MFS_ENOMEM;
+  mfs_csr *A = NULL;
+  int *prow = mfs_malloc((n ? n : 1) * sizeof *prow);
+  size_t *cnt = mfs_malloc((n ? n : 1) * sizeof *cnt);
+  int *mark = mfs_malloc((size_t)nt * (n ? n : 1) * sizeof *mark);
+  int *cols = mfs_malloc((size_t)nt * cap * sizeof *cols);
+  uint64_t *bits = mfs_malloc((size_t)nt * 4 * PATTERN_WORDS * sizeof *bits);
+  if (!prow || !cnt || !mark || !cols || !bits)
+    goto done;
+  size_t nf = free_rows(n, fixed, prow, NULL);
+  for (size_t i = 0; i < (size_t)nt * n; i++)
+    mark[i] = -1;
+  /* pass 1: the row lengths (per thread a bitmap, or a marker tagged by the row) */
+#pragma omp parallel for schedule(dynamic, 1024) num_threads(nt)
+  for (size_t I = 0; I < n; I++) {
+    const int t = mfs_thread_id();
+    cnt[I] = prow[I] >= 0 ? pattern_row(pl, I, prow, mark + (size_t)t * n, (int)I,
+                                        bits + (size_t)t * 4 * PATTERN_WORDS, NULL)
+                          : 0;
+  }
+  size_t nnz = 0;
+  for (size_t I = 0; I < n; I++)
+    nnz += cnt[I] * nd * nd;
+  A = mfs_csr_alloc(nf * nd, nf * nd, nnz);
+  if (!A)
+    goto done;
+  for (size_t I = 0, r = 0; I < n; I++)
+    if (prow[I] >= 0)
+      for (size_t a = 0; a < nd; a++, r++)
+        A->ptr[r + 1] = A->ptr[r] + cnt[I] * nd;
+  for (size_t i = 0; i < (size_t)nt * n; i++)
+    mark[i] = -1;
+  /* pass 2: the columns in order, written at their rows' places */
+#pragma omp parallel for schedule(dynamic, 1024) num_threads(nt)
+  for (size_t I = 0; I < n; I++) {
+    if (prow[I] < 0)
+      continue;
+    const int t = mfs_thread_id();
+    int *c = cols + (size_t)t * cap;
+    size_t len = pattern_row(pl, I, prow, mark + (size_t)t * n, (int)I,
+                             bits + (size_t)t * 4 * PATTERN_WORDS, c);
+    size_t r0 = (size_t)prow[I] * nd;
+    for (size_t a = 0; a < nd; a++) {
+      int *ix = A->idx + A->ptr[r0 + a];
+      for (size_t s = 0; s < len; s++)
+        for (size_t b = 0; b < nd; b++)
+          ix[s * nd + b] = (int)((size_t)prow[c[s]] * nd + b);
+    }
+  }
+  *out = A;
+  A = NULL;
+  st = MFS_OK;
+done:
+  mfs_csr_free(A);
+  mfs_free(prow);
+  mfs_free(cnt);
+  mfs_free(mark);
+  mfs_free(cols);
+  mfs_free(bits);
+  return st;
+}
+
+typedef struct {
+  mfs_csr *K, *M;
+  double *m;
+  const int *prow;
+  int ndof, pu;
+  double density;
+  const double *vol; /* the particles' volumes, or NULL: node_vol for every one */
+  double node_vol;
+} fill_ctx;
+
+/* A row of the sweep into its place in K, M and m. */
+static mfs_status fill_row(void *vc, const mfs_row *r, size_t I, int thread)
+{
+  (void)thread;
+  const fill_ctx *c = vc;
+  const size_t nd = (size_t)c->ndof, nd2 = nd * nd, rp = (size_t)c->prow[I], len = r->len;
+  const mfs_csr *P = c->K ? c->K : c->M;
+  for (size_t a = 0; a < nd; a++) {
+    size_t base = P ? P->ptr[rp * nd + a] : 0;
+    if (c->K)
+      for (size_t s = 0; s < len; s++)
+        for (size_t b = 0; b < nd; b++)
+          c->K->val[base + s * nd + b] = r->K[s * nd2 + a * nd + b];
+    if (c->M)
+      for (size_t s = 0; s < len; s++)
+        for (size_t b = 0; b < nd; b++)
+          c->M->val[base + s * nd + b] = a == b ? r->M[s] : 0.0;
+    if (c->m) /* sph: the particle masses rho V_I (eq. 51) */
+      c->m[rp * nd + a] = c->pu ? r->lump : c->density * (c->vol ? c->vol[I] : c->node_vol);
+  }
+  return MFS_OK;
+}
+
+mfs_status mfs_assemble_fill(const mfs_plan *pl, const mfs_material *mat,
+                             const unsigned char *fixed, mfs_csr *K, mfs_csr *M, double *m,
+                             size_t *bad)
+{
+  if (!pl || !mat)
+    return MFS_EINVAL;
+  const mfs_particles *p = mfs_plan_particles(pl);
+  if (mat->physics == MFS_PHYS_PLANE_STRAIN && p->dim != 2)
+    return MFS_EINVAL;
+  const size_t n = p->n;
+  const int nd = mfs_physics_ndof(mat->physics);
+  /* the lumped mass: rho times the integral of phi_I (the row sum of eq. 131)
+   * for a partition of unity; else the particle masses rho V_I (SPH, eq. 51),
+   * or rho times the lattice's area per node (eq. 119's node volume, asked for) */
+  const mfs_disc *d = mfs_plan_disc(pl);
+  const int pu = d->shape->partition_of_unity && !d->node_volume_mass;
+  const double *vol = d->node_volume_mass ? NULL : p->vol;
+  const double node_vol = d->node_volume_mass ? mfs_particles_node_volume(p) : 0.0;
+  int *prow = mfs_malloc((n ? n : 1) * sizeof *prow), *part = mfs_malloc((n ? n : 1) * sizeof *part);
+  if (!prow || !part) {
+    mfs_free(prow);
+    mfs_free(part);
+    return MFS_ENOMEM;
+  }
+  size_t nf = free_rows(n, fixed, prow, part);
+  mfs_status st = MFS_EINVAL;
+  const mfs_csr *P = K ? K : M;
+  if ((K && (K->nrow != nf * nd || K->ncol != nf * nd)) ||
+      (M && (M->nrow != nf * nd || M->ncol != nf * nd)) ||
+      (K && M && K->ptr[K->nrow] != M->ptr[M->nrow]))
+    goto done;
+  mfs_forms f = mfs_forms_stiffness(mat);
+  f.stiffness = K != NULL;
+  if (M)
+    f.density = mat->density;
+  if (m && pu)
+    f.lumped_density = mat->density;
+  fill_ctx c = {.K = K, .M = M, .m = m, .prow = prow, .ndof = nd, .pu = pu,
+                .density = mat->density, .vol = vol, .node_vol = node_vol};
+  if (!P) { /* the lumped mass alone: no pattern to fill */
+    sweep_job j = {.pl = pl, .f = &f, .skip = fixed, .fn = fill_row, .ctx = &c};
+    if (!pu) { /* nothing to assemble */
+      for (size_t I = 0; I < n; I++)
+        for (int a = 0; a < nd && prow[I] >= 0; a++)
+          m[(size_t)prow[I] * nd + a] = mat->density * (vol ? vol[I] : node_vol);
+      st = MFS_OK;
+      goto done;
+    }
+    st = sweep_run(&j, bad);
+    goto done;
+  }
+  sweep_job j = {.pl = pl, .f = &f, .skip = fixed, .pat = P, .ndof = nd, .prow = prow,
+                 .part = part, .fn = fill_row, .ctx = &c};
+  st = sweep_run(&j, bad);
+done:
+  mfs_free(prow);
+  mfs_free(part);
+  return st;
+}
+
+/* The matrix of the forms over every particle: the pattern, then its values. */
+static mfs_status assemble_csr(const mfs_plan *pl, const mfs_material *mat, int want_mass,
                                mfs_csr **out)
 {
   *out = NULL;
-  const size_t n = mfs_plan_particles(pl)->n;
-  const int ndof = mfs_physics_ndof(f->physics), nd2 = ndof * ndof;
-  mfs_row r;
-  mfs_status st = mfs_row_init(&r, pl, f);
-  if (st != MFS_OK)
-    return st;
-  size_t cap = 8 * n * nd2 + 16;
-  mfs_csr *A = mfs_csr_alloc(n * ndof, n * ndof, cap);
-  st = A ? MFS_OK : MFS_ENOMEM;
-  size_t pos = 0;
-  for (size_t I = 0; I < n && st == MFS_OK; I++) {
-    st = mfs_row_assemble(&r, pl, f, I);
-    if (st != MFS_OK)
-      break;
-    size_t len = r.len;
-    if (pos + len * nd2 > cap) {
-      size_t ncap = 2 * cap + len * nd2;
-      int *ti = mfs_realloc(A->idx, ncap * sizeof *ti);
-      if (ti)
-        A->idx = ti;
-      double *tv = ti ? mfs_realloc(A->val, ncap * sizeof *tv) : NULL;
-      if (!tv) {
-        st = MFS_ENOMEM;
-        break;
-      }
-      A->val = tv;
-      cap = ncap;
-    }
-    for (int a = 0; a < ndof; a++) {
-      for (size_t s = 0; s < len; s++)
-        for (int b = 0; b < ndof; b++) {
-          A->idx[pos] = r.col[s] * ndof + b;
-          A->val[pos] = want_mass ? (a == b ? r.M[s] : 0.0) : r.K[s * nd2 + a * ndof + b];
-          pos++;
-        }
-      A->ptr[I * ndof + a + 1] = pos;
-    }
-  }
-  mfs_row_free(&r);
+  mfs_csr *A = NULL;
+  mfs_status st = mfs_assemble_pattern(pl, mfs_physics_ndof(mat->physics), NULL, &A);
+  if (st == MFS_OK)
+    st = want_mass ? mfs_assemble_fill(pl, mat, NULL, NULL, A, NULL, NULL)
+                   : mfs_assemble_fill(pl, mat, NULL, A, NULL, NULL, NULL);
   if (st != MFS_OK) {
     mfs_csr_free(A);
     return st;
@@ -429,46 +1007,18 @@ mfs_status mfs_assemble_stiffness(const mfs_plan *pl, const mfs_material *mat, m
   *K = NULL;
   if (mat->physics == MFS_PHYS_PLANE_STRAIN && mfs_plan_particles(pl)->dim != 2)
     return MFS_EINVAL;
-  mfs_forms f = mfs_forms_stiffness(mat);
-  return assemble_csr(pl, &f, 0, K);
+  return assemble_csr(pl, mat, 0, K);
 }
 
 mfs_status mfs_assemble_mass_consistent(const mfs_plan *pl, const mfs_material *mat,
                                         mfs_csr **M)
 {
-  mfs_forms f = {.physics = mat->physics, .density = mat->density};
-  return assemble_csr(pl, &f, 1, M);
+  return assemble_csr(pl, mat, 1, M);
 }
 
 mfs_status mfs_assemble_mass_lumped(const mfs_plan *pl, const mfs_material *mat, double *m)
 {
-  const mfs_particles *p = mfs_plan_particles(pl);
-  int ndof = mfs_physics_ndof(mat->physics);
-  for (size_t i = 0; i < p->n * ndof; i++)
-    m[i] = 0.0;
-  const mfs_disc *d = mfs_plan_disc(pl);
-  if (!d->shape->partition_of_unity || d->node_volume_mass) {
-    /* particle masses rho V_I (SPH, eq. 51), or rho times the lattice's area per node
-     * (eq. 119's node volume, asked for) */
-    for (size_t I = 0; I < p->n; I++)
-      for (int k = 0; k < ndof; k++)
-        m[I * ndof + k] = mat->density * (d->node_volume_mass ? mfs_particles_node_volume(p)
-                                                               : p->vol[I]);
-    return MFS_OK;
-  }
-  if (mfs_plan_order(pl) < 1)
-    return MFS_EINVAL;
-  /* rho times the integral of phi_I: the row sum of the consistent mass
-   * (eq. 131) for a partition of unity */
-  for (size_t Q = 0; Q < mfs_plan_npoints(pl); Q++) {
-    mfs_point pt;
-    mfs_plan_point(pl, Q, &pt);
-    double f = mat->density * pt.w;
-    for (size_t e = 0; e < pt.nn; e++)
-      for (int k = 0; k < ndof; k++)
-        m[(size_t)pt.idx[e] * ndof + k] += f * pt.phi[e * (size_t)pt.ncomp];
-  }
-  return MFS_OK;
+  return mfs_assemble_fill(pl, mat, NULL, NULL, NULL, m, NULL);
 }
 
 static int cmp_entry(const void *a, const void *b)

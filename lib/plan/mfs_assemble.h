@@ -61,6 +61,8 @@ typedef struct {
   double stretch_y;         /* 2D: F_22 of the paper-style Eulerian term (1 if 0) */
   double ls_beta;           /* least-squares stabilization beta (0: none; order 2) */
   int outer;                /* plane strain: K holds the gradient products A^{jl} */
+  double lumped_density;    /* rho of the row's lumped mass, mfs_row.lump = rho sum_Q w_Q
+                               phi_I(Q) (0: none; eq. 131, partition-of-unity shapes) */
 } mfs_forms;
 
 /* The stiffness forms of a material (K only). */
@@ -74,9 +76,12 @@ typedef struct {
   double *M;      /* len: consistent mass (if the forms have a density) */
   double *G;      /* len * gsz: the Eulerian term (if the forms have one) */
   int gsz;        /* doubles of G per column: 1 (1D), 4 (2D plane strain, row-major 2 x 2) */
+  double lump;    /* the row's lumped mass (if the forms have a lumped_density) */
   /* private */
   int ndof;
-  size_t cap;
+  size_t cap;     /* columns a row can have; the accumulators hold one more (a discard slot) */
+  const double *ctab; /* a chunk of the table (mfs_row_sweep without a plan table), */
+  const int *cslot;   /* the entry of each point's row in it */
   int *mark;      /* particles: position in the row, or -1 */
   int *pcol;      /* a point's neighbours: their positions in the row */
   const size_t *tptr; /* the plan's table (mfs_plan_table) and points */
@@ -104,12 +109,54 @@ mfs_status mfs_row_assemble(mfs_row *r, const mfs_plan *pl, const mfs_forms *f, 
 /* Sort the columns of the last row by particle index (with their values). */
 void mfs_row_sort(mfs_row *r);
 
+/* Rows in parallel (gcc's OpenMP, mfs_threads.h): fn(ctx, r, I, thread)
+ * once for every particle I with skip[I] == 0 (skip NULL: all), with r the
+ * accumulated row of I as mfs_row_assemble leaves it (columns in order of
+ * first appearance); rows go in blocks of consecutive particles, each block
+ * to one thread (0 .. mfs_threads() - 1), its rows in increasing order; fn
+ * may be called concurrently for rows of different blocks and writes only
+ * what belongs to its row (or to its thread).  The plan's table is used if it
+ * has one (of the order the forms need); without one, each block evaluates
+ * the points its rows need (mfs_plan_eval_point, the same values), so that no
+ * table is held: O(block) memory instead of O(table).  Values do not depend
+ * on the number of threads.  MFS_OK; the status of mfs_row_init; of a point's
+ * evaluation (MFS_ESINGULAR, *bad the smallest such point, as
+ * mfs_plan_tabulate reports it); of mfs_row_assemble or fn at the first
+ * failing row; MFS_ENOMEM. */
+typedef mfs_status (*mfs_row_fn)(void *ctx, const mfs_row *r, size_t particle, int thread);
+mfs_status mfs_row_sweep(const mfs_plan *pl, const mfs_forms *f, const unsigned char *skip,
+                         mfs_row_fn fn, void *ctx, size_t *bad);
+
+/* Symbolic assembly: the pattern of the matrices of the particles not fixed
+ * (fixed: p->n flags, NULL: none), ndof degrees of freedom per particle
+ * interleaved, numbered over the free particles in order (as mfs_model's
+ * free dofs); the columns of each row sorted.  *A (mfs_csr_free) has ptr and
+ * idx set and val allocated, not set.  From the plan's lists alone (no
+ * table).  MFS_OK, MFS_EINVAL (ndof < 1), MFS_ENOMEM. */
+mfs_status mfs_assemble_pattern(const mfs_plan *pl, int ndof, const unsigned char *fixed,
+                                mfs_csr **A);
+
+/* Numeric assembly into that pattern, in one sweep (mfs_row_sweep, so with
+ * the plan's table or, without one, evaluating the points block by block):
+ * the stiffness of mat into K, the consistent mass into M, the lumped mass
+ * into m (n_free ndof), each that is not NULL; K and M must have the pattern
+ * of mfs_assemble_pattern(pl, ndof of mat, fixed).  The values equal those
+ * of the entries of mfs_assemble_stiffness, mfs_assemble_mass_consistent and
+ * mfs_assemble_mass_lumped (the same terms added in the same order).
+ * MFS_OK, MFS_EINVAL (plane strain in 1D, a pattern of another size),
+ * MFS_ESINGULAR (at point *bad, as mfs_plan_tabulate), MFS_ENOMEM. */
+mfs_status mfs_assemble_fill(const mfs_plan *pl, const mfs_material *mat,
+                             const unsigned char *fixed, mfs_csr *K, mfs_csr *M, double *m,
+                             size_t *bad);
+
 /* The stiffness of a material over every particle, CSR of order n ndof
  * (plane strain dofs interleaved (u_x, u_y) per particle); *K is allocated
  * (mfs_csr_free). */
 mfs_status mfs_assemble_stiffness(const mfs_plan *pl, const mfs_material *mat, mfs_csr **K);
 
-/* Consistent mass (CSR, per dof) or lumped mass (vector of n ndof). */
+/* Consistent mass (CSR, per dof) or lumped mass (vector of n ndof).  These
+ * three take a plan with or without a table (mfs_assemble_fill); the columns
+ * of each row come sorted. */
 mfs_status mfs_assemble_mass_consistent(const mfs_plan *pl, const mfs_material *mat,
                                         mfs_csr **M);
 mfs_status mfs_assemble_mass_lumped(const mfs_plan *pl, const mfs_material *mat, double *m);

@@ -75,51 +75,14 @@ void mfs_model_release_plan(mfs_model *m)
   m->q = NULL;
 }
 
-/* Sort the column indices of every row (insertion sort: rows are short and
- * come out of the assembly nearly sorted).  Sorted rows make the products
- * K x of the Lanczos iterations read x in order, which is markedly faster
- * on large models. */
-static void sort_rows(mfs_csr *A)
+/* A second matrix with A's pattern (values not set). */
+static mfs_csr *same_pattern(const mfs_csr *A)
 {
-  for (size_t r = 0; r < A->nrow; r++) {
-    int *ix = A->idx;
-    double *v = A->val;
-    for (size_t e = A->ptr[r] + 1; e < A->ptr[r + 1]; e++) {
-      int c = ix[e];
-      double x = v[e];
-      size_t k = e;
-      for (; k > A->ptr[r] && ix[k - 1] > c; k--) {
-        ix[k] = ix[k - 1];
-        v[k] = v[k - 1];
-      }
-      ix[k] = c;
-      v[k] = x;
-    }
-  }
-}
-
-/* Rows and columns `keep` (full index -> reduced index, or -1) of A. */
-static mfs_csr *reduce(const mfs_csr *A, const long *keep, const size_t *dof, size_t n)
-{
-  size_t nnz = 0;
-  for (size_t r = 0; r < n; r++)
-    for (size_t e = A->ptr[dof[r]]; e < A->ptr[dof[r] + 1]; e++)
-      nnz += keep[A->idx[e]] >= 0;
-  mfs_csr *B = mfs_csr_alloc(n, n, nnz);
+  mfs_csr *B = mfs_csr_alloc(A->nrow, A->ncol, A->ptr[A->nrow]);
   if (!B)
     return NULL;
-  size_t pos = 0;
-  for (size_t r = 0; r < n; r++) {
-    for (size_t e = A->ptr[dof[r]]; e < A->ptr[dof[r] + 1]; e++) {
-      long c = keep[A->idx[e]];
-      if (c < 0)
-        continue;
-      B->idx[pos] = (int)c;
-      B->val[pos] = A->val[e];
-      pos++;
-    }
-    B->ptr[r + 1] = pos;
-  }
+  memcpy(B->ptr, A->ptr, (A->nrow + 1) * sizeof *B->ptr);
+  memcpy(B->idx, A->idx, A->ptr[A->nrow] * sizeof *B->idx);
   return B;
 }
 
@@ -127,9 +90,6 @@ mfs_model *mfs_model_alloc(const mfs_model_spec *spec, mfs_status *status, size_
 {
   mfs_status st = mfs_model_spec_check(spec, NULL);
   mfs_model *m = NULL;
-  mfs_csr *K = NULL, *M = NULL;
-  double *ml = NULL;
-  long *keep = NULL;
   if (st != MFS_OK)
     goto done;
   st = MFS_ENOMEM;
@@ -151,16 +111,12 @@ mfs_model *mfs_model_alloc(const mfs_model_spec *spec, mfs_status *status, size_
   m->pl = mfs_plan_alloc(d, m->p, m->q, &st);
   if (!m->pl)
     goto done;
-  st = mfs_plan_tabulate(m->pl, 1, bad);
-  if (st != MFS_OK)
-    goto done;
 
   size_t np = m->p->n, nfull = np * (size_t)m->ndof;
   st = MFS_ENOMEM;
   m->fixed = mfs_calloc(np, 1);
-  keep = mfs_malloc(nfull * sizeof *keep);
   m->dof = mfs_malloc(nfull * sizeof *m->dof);
-  if (!m->fixed || !keep || !m->dof)
+  if (!m->fixed || !m->dof)
     goto done;
   if (spec->fixed == MFS_FIX_MASK)
     for (size_t I = 0; I < np; I++)
@@ -170,65 +126,29 @@ mfs_model *mfs_model_alloc(const mfs_model_spec *spec, mfs_status *status, size_
       m->fixed[I] = m->p->flags[I] != 0; /* 1D: the ends; 2D: the boundary (a set: its hull) */
   m->n = 0;
   for (size_t I = 0; I < np; I++)
-    for (int k = 0; k < m->ndof; k++) {
-      size_t f = I * (size_t)m->ndof + (size_t)k;
-      keep[f] = m->fixed[I] ? -1 : (long)m->n;
+    for (int k = 0; k < m->ndof; k++)
       if (!m->fixed[I])
-        m->dof[m->n++] = f;
-    }
+        m->dof[m->n++] = I * (size_t)m->ndof + (size_t)k;
   st = MFS_EINVAL;
   if (m->n < 1)
     goto done;
 
-  st = mfs_assemble_stiffness(m->pl, &m->mat, &K);
+  /* symbolic: the pattern of the free dofs, rows sorted; numeric: K (and M,
+   * or the lumped m) filled in one sweep over the rows, which evaluates the
+   * shape functions block by block: no table is held (mfs_assemble.h) */
+  const unsigned char *fx = spec->fixed != MFS_FIX_NONE ? m->fixed : NULL;
+  st = mfs_assemble_pattern(m->pl, m->ndof, fx, &m->K);
   if (st != MFS_OK)
     goto done;
-  if (d->consistent_mass) {
-    st = mfs_assemble_mass_consistent(m->pl, &m->mat, &M);
-    if (st != MFS_OK)
-      goto done;
-  } else {
-    st = MFS_ENOMEM;
-    ml = mfs_malloc(nfull * sizeof *ml);
-    if (!ml)
-      goto done;
-    st = mfs_assemble_mass_lumped(m->pl, &m->mat, ml);
-    if (st != MFS_OK)
-      goto done;
-  }
-  sort_rows(K);
-  if (M)
-    sort_rows(M);
   st = MFS_ENOMEM;
-  if (m->n == nfull) { /* nothing fixed: keep the assembled matrices */
-    m->K = K;
-    K = NULL;
-    m->M = M;
-    M = NULL;
-    m->m = ml;
-    ml = NULL;
-  } else {
-    m->K = reduce(K, keep, m->dof, m->n);
-    if (!m->K)
+  if (d->consistent_mass) {
+    if (!(m->M = same_pattern(m->K)))
       goto done;
-    if (M) {
-      m->M = reduce(M, keep, m->dof, m->n);
-      if (!m->M)
-        goto done;
-    } else {
-      m->m = mfs_malloc(m->n * sizeof *m->m);
-      if (!m->m)
-        goto done;
-      for (size_t r = 0; r < m->n; r++)
-        m->m[r] = ml[m->dof[r]];
-    }
+  } else if (!(m->m = mfs_malloc(m->n * sizeof *m->m))) {
+    goto done;
   }
-  st = MFS_OK;
+  st = mfs_assemble_fill(m->pl, &m->mat, fx, m->K, m->M, m->m, bad);
 done:
-  mfs_free(keep);
-  mfs_free(ml);
-  mfs_csr_free(K);
-  mfs_csr_free(M);
   if (st != MFS_OK) {
     mfs_model_free(m);
     m = NULL;

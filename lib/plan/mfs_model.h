@@ -15,8 +15,11 @@
  * rows and columns of the free degrees of freedom.
  *
  * The model is built with the core machinery (mfs_disc_geometry,
- * mfs_plan_alloc, mfs_plan_tabulate, mfs_assemble_*), and keeps the plan so
- * that the element bound (mfs_bound.h) can reuse its shape table.  The
+ * mfs_plan_alloc, then mfs_assemble_pattern and mfs_assemble_fill: the
+ * pattern of the free dofs once, the values filled into it by one sweep over
+ * the rows that evaluates the shape functions block by block, so that no
+ * shape table is held), and keeps the plan (its neighbour lists, without a
+ * table) for the element bound (mfs_bound.h) and the solvers.  The
  * discretization is an mfs_disc with a finite source (mfs_disc.h). */
 #ifndef MFS_MODEL_H
 #define MFS_MODEL_H
@@ -65,7 +68,7 @@ typedef struct {
   mfs_model_spec spec;
   mfs_particles *p;       /* the particles */
   mfs_quad *q;            /* the quadrature points */
-  mfs_plan *pl;           /* shape table at the quadrature points */
+  mfs_plan *pl;           /* the neighbour lists (no table: mfs_plan_tabulate makes one) */
   mfs_material mat;       /* spec.disc.material */
   int ndof;               /* degrees of freedom per particle */
   unsigned char *fixed;   /* p->n flags: 1 if the particle is fixed */
@@ -85,7 +88,7 @@ typedef struct {
 mfs_model *mfs_model_alloc(const mfs_model_spec *spec, mfs_status *status, size_t *bad);
 void mfs_model_free(mfs_model *m);
 
-/* Drop the plan (shape table) and quadrature set, which hold most of the
+/* Drop the plan (neighbour lists) and quadrature set, which hold much of the
  * memory of a large model, once the bound has been computed. */
 void mfs_model_release_plan(mfs_model *m);
 

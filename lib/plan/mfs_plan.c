@@ -6,6 +6,7 @@
 
 #include "mfs_eval.h"
 #include "mfs_neighbor.h"
+#include "mfs_threads.h"
 
 struct mfs_plan {
   mfs_disc disc;          /* kernel, shape, dilation, rcond (the source is not used) */
@@ -91,6 +92,33 @@ done:
   return pl;
 }
 
+mfs_status mfs_plan_evaluator(const mfs_plan *pl, int order, mfs_eval *ev)
+{
+  *ev = (mfs_eval){0};
+  if (!pl || order < 1 || order > 2)
+    return MFS_EINVAL;
+  mfs_status st = mfs_eval_init(ev, &pl->disc, pl->a, order, &pl->p->box, pl->maxrow);
+  ev->within = 1; /* the lists hold exactly the particles within a (mfs_nlist_build) */
+  return st;
+}
+
+mfs_status mfs_plan_eval_point(const mfs_plan *pl, mfs_eval *ev, size_t Q, int *kept, double *out,
+                               double *rcond)
+{
+  const mfs_nlist *nl = pl->nl;
+  size_t e0 = nl->ptr[Q], len = nl->ptr[Q + 1] - e0;
+  int nn;
+  double rc = 1.0;
+  mfs_status st = mfs_eval_point(ev, pl->q->x + Q * (size_t)pl->p->dim, pl->p->x, pl->p->vol,
+                                 nl->idx + e0, len, pl->q->node[Q], kept, out, &nn, &rc);
+  if (rcond)
+    *rcond = rc;
+  return st;
+}
+
+/* The table in parallel: each thread a contiguous range of points in
+ * increasing order, stopping at its first failure, so that the failing point
+ * reported (the smallest) and every value are those of the serial loop. */
 mfs_status mfs_plan_tabulate(mfs_plan *pl, int order, size_t *bad)
 {
   if (!pl || order < 1 || order > 2)
@@ -98,29 +126,53 @@ mfs_status mfs_plan_tabulate(mfs_plan *pl, int order, size_t *bad)
   mfs_free(pl->tab);
   pl->tab = NULL;
   pl->order = pl->ncomp = 0;
-  const mfs_particles *p = pl->p;
-  const mfs_quad *q = pl->q;
-  const mfs_nlist *nl = pl->nl;
-  int ncomp = mfs_shape_ncomp(p->dim, order);
-  mfs_eval ev;
-  mfs_status st = mfs_eval_init(&ev, &pl->disc, pl->a, order, &p->box, pl->maxrow);
-  ev.within = 1; /* the lists hold exactly the particles within a (mfs_nlist_build) */
-  double *tab = mfs_malloc((nl->ptr[q->n] ? nl->ptr[q->n] : 1) * (size_t)ncomp * sizeof *tab);
-  int *kept = mfs_malloc(pl->maxrow * sizeof *kept);
-  if (st == MFS_OK && (!tab || !kept))
-    st = MFS_ENOMEM;
+  const size_t nq = pl->q->n;
+  const int ncomp = mfs_shape_ncomp(pl->p->dim, order), nt = mfs_threads();
+  double *tab = mfs_malloc((pl->nl->ptr[nq] ? pl->nl->ptr[nq] : 1) * (size_t)ncomp * sizeof *tab);
+  mfs_eval *ev = mfs_calloc((size_t)nt, sizeof *ev);
+  int *kept = mfs_malloc((size_t)nt * pl->maxrow * sizeof *kept);
+  mfs_status st = tab && ev && kept ? MFS_OK : MFS_ENOMEM;
+  for (int t = 0; t < nt && st == MFS_OK; t++)
+    st = mfs_plan_evaluator(pl, order, ev + t);
   double rcond = 1.0;
-  for (size_t Q = 0; Q < q->n && st == MFS_OK; Q++) {
-    size_t e0 = nl->ptr[Q], len = nl->ptr[Q + 1] - e0;
-    int nn;
-    double rc;
-    st = mfs_eval_point(&ev, q->x + Q * (size_t)p->dim, p->x, p->vol, nl->idx + e0, len,
-                        q->node[Q], kept, tab + e0 * (size_t)ncomp, &nn, &rc);
-    rcond = rc < rcond ? rc : rcond;
-    if (st != MFS_OK && bad)
-      *bad = Q;
+  size_t first_bad = nq;
+  mfs_status bad_st = MFS_OK;
+  if (st == MFS_OK) {
+#pragma omp parallel num_threads(nt)
+    {
+      const int t = mfs_thread_id();
+      double rc_t = 1.0;
+      int failed = 0;
+#pragma omp for schedule(static)
+      for (size_t Q = 0; Q < nq; Q++) {
+        if (failed)
+          continue;
+        double rc;
+        mfs_status s = mfs_plan_eval_point(pl, ev + t, Q, kept + (size_t)t * pl->maxrow,
+                                           tab + pl->nl->ptr[Q] * (size_t)ncomp, &rc);
+        rc_t = rc < rc_t ? rc : rc_t;
+        if (s != MFS_OK) {
+          failed = 1;
+#pragma omp critical(mfs_plan_tabulate)
+          if (Q < first_bad) {
+            first_bad = Q;
+            bad_st = s;
+          }
+        }
+      }
+#pragma omp critical(mfs_plan_tabulate)
+      rcond = rc_t < rcond ? rc_t : rcond;
+    }
+    if (first_bad < nq) {
+      st = bad_st;
+      if (bad)
+        *bad = first_bad;
+    }
   }
-  mfs_eval_free(&ev);
+  if (ev)
+    for (int t = 0; t < nt; t++)
+      mfs_eval_free(ev + t);
+  mfs_free(ev);
   mfs_free(kept);
   pl->rcond = rcond;
   if (st != MFS_OK) {

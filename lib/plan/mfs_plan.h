@@ -17,6 +17,7 @@
 #include <stddef.h>
 
 #include "mfs_disc.h"
+#include "mfs_eval.h"
 #include "mfs_particles.h"
 #include "mfs_quad.h"
 #include "mfs_status.h"
@@ -54,6 +55,21 @@ void mfs_plan_free(mfs_plan *pl);
  * is not NULL); MFS_EINVAL; MFS_ENOMEM.  May be called again (another
  * order); on failure the plan has no table. */
 mfs_status mfs_plan_tabulate(mfs_plan *pl, int order, size_t *bad);
+
+/* An evaluator for the plan's points: its kernel, shape, support radius,
+ * rcond threshold and box, derivatives up to `order`, room for its longest
+ * list (what mfs_plan_tabulate uses; one per thread).  Free with
+ * mfs_eval_free.  MFS_OK, MFS_EINVAL, MFS_ENOMEM. */
+mfs_status mfs_plan_evaluator(const mfs_plan *pl, int order, mfs_eval *ev);
+
+/* The table row of point Q by ev (mfs_plan_evaluator), into out (nn *
+ * ncomp doubles of ev's order, nn the length of Q's list); kept (room for
+ * nn ints) receives the neighbours, equal to Q's list.  The same values as
+ * mfs_plan_tabulate's row of Q, so that a consumer may evaluate points as it
+ * needs them instead of holding the table.  rcond may be NULL.  The shape's
+ * status (MFS_OK, MFS_ESINGULAR). */
+mfs_status mfs_plan_eval_point(const mfs_plan *pl, mfs_eval *ev, size_t Q, int *kept, double *out,
+                               double *rcond);
 
 size_t mfs_plan_npoints(const mfs_plan *pl);
 void mfs_plan_point(const mfs_plan *pl, size_t Q, mfs_point *pt);

@@ -356,6 +356,10 @@ static mfs_status stressed_init(mfs_solver2d *s, const double *sigma0, double sk
   w->sig0[3] = sigma0[1];
   w->mu = md->mat.modulus;
   w->lam = mfs_material_lambda(&md->mat);
+  /* the model holds no table (mfs_model.h): the force loops read one every step */
+  mfs_status tst = mfs_plan_tabulate(md->pl, 1, NULL);
+  if (tst != MFS_OK)
+    return tst;
   mfs_plan_table(md->pl, &w->tptr, &w->tidx, &w->tab);
   w->nc = mfs_plan_ncomp(md->pl);
   size_t np = p->n, nq = q->n;

@@ -7,7 +7,10 @@ that cancel to round-off, e.g. an omega2 of 1e-17 next to values of 4, are
 compared on the column's scale); text cells must be equal.  Columns are
 matched by name; renames.txt (old,new per line) maps renamed columns, and a
 column that only the new output has is allowed (a new column is not a change
-of behaviour).  A whitespace-aligned table (reproduce's table.txt) is
+of behaviour).  tolerances.txt (column,rtol,atol per line) gives a column
+its own tolerances where the algorithm promises less than rtol: values that
+differ with the BLAS/LAPACK library (Debian's reference or OpenBLAS, chosen by
+update-alternatives, docs/parallel.md) beyond 1e-12.  A whitespace-aligned table (reproduce's table.txt) is
 compared field by field in the same way.  Prints one line per difference
 (at most 20 per file) and the count; exit 1 on any difference.
 usage: compare.py REFERENCE_DIR NEW_DIR [RTOL]"""
@@ -35,7 +38,17 @@ def load_renames(path):
                 ren[old] = new
     return ren
 
-def compare_csv(ref, new, rtol, ren, out):
+def load_tolerances(path):
+    tol = {}
+    if os.path.exists(path):
+        for line in open(path):
+            line = line.strip()
+            if line and not line.startswith('#'):
+                name, r, a = line.split(',')
+                tol[name] = (float(r), float(a))
+    return tol
+
+def compare_csv(ref, new, rtol, ren, out, tols={}):
     r = list(csv.reader(open(ref, newline='')))
     n = list(csv.reader(open(new, newline='')))
     if not r or not n:
@@ -55,9 +68,13 @@ def compare_csv(ref, new, rtol, ren, out):
         vals = [num(row[k]) for row in r[1:] if k < len(row)]
         scale = max([abs(v) for v in vals if v is not None] or [0.0])
         atol = rtol * 1e-3 * scale
+        crtol = rtol
+        if rh[k] in tols:
+            crtol, catol = tols[rh[k]]
+            atol = max(atol, catol)
         for i in range(1, len(r)):
             a, b = r[i][k], n[i][idx[k]]
-            if not close(a, b, rtol, atol):
+            if not close(a, b, crtol, atol):
                 out.append(f'row {i} column {rh[k]}: {a} -> {b}')
                 if len(out) >= 20:
                     return out
@@ -79,10 +96,11 @@ def main():
     refdir, newdir = sys.argv[1], sys.argv[2]
     rtol = float(sys.argv[3]) if len(sys.argv) > 3 else 1e-12
     ren = load_renames(os.path.join(refdir, 'renames.txt'))
+    tols = load_tolerances(os.path.join(refdir, 'tolerances.txt'))
     bad = files = 0
     for root, _, names in os.walk(refdir):
         for name in sorted(names):
-            if name == 'renames.txt':
+            if name in ('renames.txt', 'tolerances.txt'):
                 continue
             ref = os.path.join(root, name)
             rel = os.path.relpath(ref, refdir)
@@ -94,7 +112,7 @@ def main():
                 continue
             out = []
             if name.endswith('.csv'):
-                compare_csv(ref, new, rtol, ren, out)
+                compare_csv(ref, new, rtol, ren, out, tols)
             else:
                 compare_text(ref, new, rtol, out)
             for line in out:
