@@ -198,7 +198,21 @@ static void parse_nodes(const char *arg, int beam, int *nx, int *ny)
   mfs_free(copy);
 }
 
-/* One model, assembled and solved; dies with the right message and code. */
+static void static_free_cb(void *m)
+{
+  mfs_static_free(m);
+}
+
+/* Done with a model of run_model: its clean-up for cli_die removed, freed. */
+static void model_done(mfs_static *m)
+{
+  cli_on_die_pop();
+  mfs_static_free(m);
+}
+
+/* One model, assembled and solved; dies with the right message and code.
+ * The model is freed by cli_die until model_done (a die leaves nothing
+ * behind, for the sanitizer's leak check of tests/test_alloc.sh). */
 static mfs_static *run_model(const mfs_static_spec *s, const static_opts *o, int solve)
 {
   mfs_status st;
@@ -210,6 +224,7 @@ static mfs_static *run_model(const mfs_static_spec *s, const static_opts *o, int
               s->problem->name);
     cli_die(1, "building the model: %s", mfs_strerror(st));
   }
+  cli_on_die(static_free_cb, m);
   mfs_static_where w = {{0, 0}, 0, 0};
   st = mfs_static_assemble(m, &w);
   mfs_static_info in;
@@ -278,9 +293,10 @@ static void nodal_csv(FILE *f, const mfs_static_spec *base, const mfs_static_met
     s.method = ms[k];
     mfs_static *m = run_model(&s, o, 1);
     size_t n = mfs_static_nnodes(m);
-    double *uh = mfs_malloc(2 * n * sizeof *uh), *ue = mfs_malloc(2 * n * sizeof *ue);
-    if (!uh || !ue)
+    double *uh = mfs_malloc(4 * n * sizeof *uh), *ue = uh + 2 * n; /* one block */
+    if (!uh)
       cli_die(1, "out of memory");
+    cli_on_die(mfs_free, uh);
     mfs_status st = mfs_static_nodal_solution(m, uh, ue);
     if (st != MFS_OK)
       cli_die(1, "the nodal solution of method %s: %s", s.method->name, mfs_strerror(st));
@@ -297,9 +313,9 @@ static void nodal_csv(FILE *f, const mfs_static_spec *base, const mfs_static_met
       put(f, ue[2 * I], 0);
       put(f, ue[2 * I + 1], 1);
     }
+    cli_on_die_pop();
     mfs_free(uh);
-    mfs_free(ue);
-    mfs_static_free(m);
+    model_done(m);
   }
 }
 
@@ -322,11 +338,16 @@ static void study_csv(FILE *f, const mfs_static_spec *base, const mfs_static_met
         "rate_l2,rate_L2,rate_energy,rate_energy_nodal,local_rate_L2,local_rate_energy\n",
         f);
   level_row *rows = mfs_malloc(L * sizeof *rows);
-  double *h = mfs_malloc(L * sizeof *h), *e[4];
-  for (int k = 0; k < 4; k++)
-    e[k] = mfs_malloc(L * sizeof *e[k]);
-  if (!rows || !h || !e[0] || !e[1] || !e[2] || !e[3])
+  double *h = mfs_malloc(5 * L * sizeof *h), *e[4]; /* h and the four errors: one block */
+  if (!rows || !h) {
+    mfs_free(rows);
+    mfs_free(h);
     cli_die(1, "out of memory");
+  }
+  for (int k = 0; k < 4; k++)
+    e[k] = h + (size_t)(k + 1) * L;
+  cli_on_die(mfs_free, rows);
+  cli_on_die(mfs_free, h);
   for (size_t k = 0; k < nm; k++) {
     mfs_static_spec s = *base;
     s.method = ms[k];
@@ -351,7 +372,7 @@ static void study_csv(FILE *f, const mfs_static_spec *base, const mfs_static_met
       e[1][l] = r->e.L2;
       e[2][l] = r->e.energy;
       e[3][l] = r->e.energy_nodal;
-      mfs_static_free(m);
+      model_done(m);
     }
     double rate[4];
     for (int q = 0; q < 4; q++)
@@ -380,10 +401,10 @@ static void study_csv(FILE *f, const mfs_static_spec *base, const mfs_static_met
       put(f, le, 1);
     }
   }
+  cli_on_die_pop();
+  cli_on_die_pop();
   mfs_free(rows);
   mfs_free(h);
-  for (int k = 0; k < 4; k++)
-    mfs_free(e[k]);
 }
 
 static void patch_csv(FILE *f, const mfs_static_spec *base, const mfs_static_method **ms,
@@ -427,7 +448,7 @@ static void patch_csv(FILE *f, const mfs_static_spec *base, const mfs_static_met
     put(f, c.test_lambda, 0);
     put(f, c.test_lambda_dev, 0);
     fprintf(f, "%zu\n", c.lambda_points);
-    mfs_static_free(m);
+    model_done(m);
   }
 }
 

@@ -40,6 +40,25 @@ static double backward_error(const mfs_csr *A, const double *b, const double *x)
 
 /* ---- CHOLMOD ---------------------------------------------------------- */
 
+/* CHOLMOD's default ordering strategy (nmethods 0, no given permutation:
+ * method 1 is AMD, method 2 METIS, tried only where AMD's fill is high, the
+ * better one taken) skips an ordering that fails for lack of memory and
+ * clears the status: the factorization then uses another ordering than it
+ * does with enough memory, with another rounding and another rcond
+ * estimate.  1 if that happened after cholmod_l_analyze on a fresh common
+ * (the methods' counts start EMPTY): the solvers report it as out of memory
+ * rather than a different result. */
+static int ordering_skipped(const cholmod_common *c)
+{
+  if (c->nmethods != 0)
+    return 0;
+  double lnz = c->method[1].lnz, fl = c->method[1].fl;
+  if (lnz < 0.0)
+    return 1; /* AMD failed */
+  int metis_tried = !(fl < 500.0 * lnz || lnz < 5.0 * c->anz); /* cholmod_analyze's test */
+  return metis_tried && c->method[2].lnz < 0.0;
+}
+
 static int cholmod_solve_fn(const mfs_csr *A, const double *b, double *x, mfs_spsolve_info *info)
 {
   cholmod_common c;
@@ -73,7 +92,7 @@ static int cholmod_solve_fn(const mfs_csr *A, const double *b, double *x, mfs_sp
   if (!cholmod_l_sort(S, &c))
     goto done;
   L = cholmod_l_analyze(S, &c);
-  if (!L)
+  if (!L || ordering_skipped(&c))
     goto done;
   int ok = cholmod_l_factorize(S, L, &c);
   info->lib_status = c.status;
@@ -181,7 +200,7 @@ static int cholmod_constrained_fn(const mfs_csr *A, const mfs_csr *C, const doub
   if (!M)
     goto done;
   L = cholmod_l_analyze(M, &c);
-  if (!L)
+  if (!L || ordering_skipped(&c))
     goto done;
   int ok = cholmod_l_factorize(M, L, &c);
   info->lib_status = c.status;

@@ -101,13 +101,18 @@ static int search(mfs_solver *s)
   }
   if (maxrow > w->cap) {
     size_t cap = 2 * maxrow;
+    /* each block kept as soon as it is grown (realloc has freed the old
+     * one); cap, their common size, only when all three are */
     double *o = mfs_realloc(w->out, 2 * cap * sizeof *o);
-    if (o)
-      w->out = o;
-    int *l = o ? mfs_realloc(w->loc, cap * sizeof *l) : NULL;
-    if (!l || mfs_eval_reserve(&w->ev, cap) != MFS_OK)
+    if (!o)
+      return MFS_ENOMEM;
+    w->out = o;
+    int *l = mfs_realloc(w->loc, cap * sizeof *l);
+    if (!l)
       return MFS_ENOMEM;
     w->loc = l;
+    if (mfs_eval_reserve(&w->ev, cap) != MFS_OK)
+      return MFS_ENOMEM;
     w->cap = cap;
   }
   memcpy(w->xb, w->x, s->n * sizeof *w->x);
