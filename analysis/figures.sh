@@ -1,7 +1,7 @@
 #!/usr/bin/env bash
-# Write the data of the reproduced tables and figures (paper 003 Tables I-II,
-# Figs 3, 4, 9, 10, 11, 13, 14, 15, 17, 18; paper 000 Fig. 1) as CSV into DIR (default
-# notebooks-data) with `mfstab reproduce`, the time series of the shipped
+# Write the data of the reproduced tables and figures (every row of `mfstab reproduce`:
+# the four papers) as CSV into DIR (default notebooks-data) with `mfstab reproduce`,
+# paper 000 Fig. 1 at the figure's resolution with `mfstab map`, the time series of the shipped
 # scenes behind paper 003 Fig. 6 and paper 001 Figs 4 and 8 with `mfstab run`,
 # then one PNG per figure made from that CSV only (analysis/plot_figures.py,
 # Debian's python3-matplotlib), workprec.png included: it is re-plotted from
@@ -16,6 +16,14 @@ cd "$(dirname "$0")/.."
 build=${1:-build}
 dir=${2:-notebooks-data}
 "$build/tools/mfstab" reproduce --out "$dir"
+# paper 000 Fig. 1 at the figure's resolution (reproduce's rows use a 10 x 10 map): 35 x 35
+# states on [0.3, 2]^2 for both stress-point layouts, and a zoom around F = I
+map() { "$build/tools/mfstab" map --material paper000 --kernel cubic --shape mls --dilation 2 \
+  --frame lagrangian,eulerian,eulerian-consistent "$@"; }
+map --stretch-range 0.3:2.0:35 --quadrature stress-quad -o "$dir/fig01_000_stress-quad.csv"
+map --stretch-range 0.3:2.0:35 --quadrature stress-tri -o "$dir/fig01_000_stress-tri.csv"
+map --stretch-range 0.85:1.15:25 --quadrature stress-quad -o "$dir/fig01_000_zoom.csv"
+echo "wrote the maps fig01_000_*.csv" >&2
 run() { "$build/tools/mfstab" run "$@"; }
 run analysis/scenes/rod-tensile.ini --set discretization.frame=lagrangian --set output.every=1 \
   -o "$dir/run_rod_tensile_lagrangian.csv"

@@ -81,7 +81,8 @@ def parse_match_table(text):
 def fresh_run():
     """Run the main job's data part (analysis/figures.sh with FIGURES_PLOTS=0: `mfstab reproduce`
     and the scene runs, no plots) into a temporary directory; compare every CSV it writes with
-    the committed one in DATA. Returns (match table header, rows, comparison rows, seconds)."""
+    the committed one in DATA. Returns (match table header, rows, comparison rows, seconds): the
+    table from the run's reproduce.csv (artifact, paper, mfstab, status, csv)."""
     if not os.path.exists(MFSTAB):
         raise FileNotFoundError(f"{MFSTAB}: mfstab is not built (bash scripts/build.sh)")
     build = os.path.dirname(os.path.dirname(MFSTAB))
@@ -93,7 +94,11 @@ def fresh_run():
         secs = time.time() - t0
         if p.returncode != 0:
             raise RuntimeError(f"analysis/figures.sh exited {p.returncode}:\n{p.stderr[-2000:]}")
-        header, rows = parse_match_table(p.stdout)
+        parse_match_table(p.stdout)  # the printed table is there
+        with open(os.path.join(tmp, "reproduce.csv"), newline="") as f:  # the same table, as CSV
+            r = csv.reader(f)
+            header = next(r)
+            rows = [dict(zip(header, x)) for x in r]
         comparison = [compare_csv(os.path.join(tmp, n), os.path.join(DATA, n))
                       for n in sorted(os.listdir(tmp)) if n.endswith(".csv")]
     return header, rows, comparison, secs

@@ -6,6 +6,7 @@
 #include <complex.h>
 #undef I
 #include <stdlib.h>
+#include <string.h>
 
 #include "check.h"
 #include "mfstab.h"
@@ -515,6 +516,85 @@ static void errors(void)
   CHECK(mfs_disp_plan_alloc(&s, &st) == NULL && st == MFS_ENOTSUP, "plane strain in 1D: %d", st);
 }
 
+/* The lumped masses of a unit cell: the diagonal of the Bloch mass symbol at k = 0. */
+static void cell_masses(const mfs_disc *d, double *m, int *nb)
+{
+  mfs_disp_spec sp = {.disc = *d, .stretch = 1.0};
+  mfs_status st;
+  mfs_disp_plan *p = mfs_disp_plan_alloc(&sp, &st);
+  CHECK(p != NULL, "plan %s: status %d", d->quadrature->name, st);
+  if (!p)
+    return;
+  *nb = mfs_disp_branches(p);
+  double complex K[4], M[4];
+  const double k0[2] = {0.0, 0.0};
+  st = mfs_disp_symbols(p, 0.0, k0, K, M);
+  CHECK(st == MFS_OK && *nb <= 2, "symbols: status %d, %d branches", st, *nb);
+  for (int i = 0; i < *nb && i < 2; i++)
+    m[i] = creal(M[i * *nb + i]);
+  mfs_disp_plan_free(p);
+}
+
+/* eq. 119's node volume (node_volume_mass) against the row sum (eq. 131):
+ * the star pattern's two nodes have different row sums (0.99386 and
+ * 1.00614 at cubic D = 1.75, docs/errata.md E20), the node volume is 1 for
+ * both; on a lattice of equivalent nodes the two are the same, and eq. 119
+ * evaluated from the stencil (mfs_stencil, the row of node 0) equals the
+ * Bloch symbol. */
+static void node_volume(void)
+{
+  mfs_disc d = disc(2, MFS_LATTICE_SQUARE, "stress-star", &mfs_kernel_cubic, &mfs_shape_mls, 1.75,
+                    MFS_FRAME_LAGRANGIAN, MFS_PHYS_SCALAR, 0.3, 0);
+  double m[2] = {0, 0};
+  int nb = 0;
+  cell_masses(&d, m, &nb);
+  CHECK(nb == 2, "star pattern: %d nodes in the unit cell, want 2", nb);
+  CHECK_NEAR(m[0] + m[1], 2.0, 1e-12, "star row-sum masses add up to two node volumes");
+  CHECK_NEAR(fmin(m[0], m[1]), 0.9938600626843582, 1e-10, "star: the smaller row-sum mass");
+  d.node_volume_mass = 1;
+  cell_masses(&d, m, &nb);
+  CHECK(m[0] == 1.0 && m[1] == 1.0, "star, node volume: masses %.17g %.17g, want 1", m[0], m[1]);
+  const char *field = NULL;
+  d.consistent_mass = 1;
+  CHECK(mfs_disc_check(&d, &field) == MFS_EINVAL && strcmp(field, "node_volume_mass") == 0,
+        "node volume with consistent mass accepted (field %s)", field ? field : "(null)");
+  /* equivalent nodes: triangle centres and the hexagonal lattice */
+  static const struct {
+    const char *quad;
+    mfs_lattice_kind lat;
+  } eq[2] = {{"stress-tri", MFS_LATTICE_SQUARE}, {"stress-hex", MFS_LATTICE_HEX}};
+  for (int c = 0; c < 2; c++) {
+    mfs_disc a = disc(2, eq[c].lat, eq[c].quad, &mfs_kernel_cubic, &mfs_shape_mls, 2.1,
+                      MFS_FRAME_LAGRANGIAN, MFS_PHYS_SCALAR, 0.3, 0), b = a;
+    b.node_volume_mass = 1;
+    mfs_disp_spec sa = {.disc = a, .stretch = 1.0}, sb = {.disc = b, .stretch = 1.0};
+    mfs_status st;
+    mfs_disp_plan *pa = mfs_disp_plan_alloc(&sa, &st), *pb = mfs_disp_plan_alloc(&sb, &st);
+    mfs_stencil_entry *e = NULL;
+    size_t ne = 0, bad;
+    CHECK(pa && pb && mfs_stencil(&b, &e, &ne, &bad) == MFS_OK, "%s: plans or stencil", eq[c].quad);
+    double worst = 0.0, worst119 = 0.0, vol = c ? sqrt(3.0) / 2.0 : 1.0;
+    for (int i = 1; pa && pb && e && i <= 7; i++) {
+      double th = 0.3 * i, kap = 0.13 * i, k[2] = {M_PI * kap * cos(th), M_PI * kap * sin(th)};
+      double wa = w2(pa, 0.0, kap, th, 0), wb = w2(pb, 0.0, kap, th, 0), w119 = 0.0;
+      for (size_t t = 0; t < ne; t++) { /* offsets in the lattice basis a1 = (1, 0), a2 */
+        double x = e[t].j + (c ? 0.5 * e[t].k : 0.0), y = c ? sqrt(3.0) / 2.0 * e[t].k : e[t].k;
+        w119 += e[t].K * cos(k[0] * x + k[1] * y);
+      }
+      w119 /= vol;
+      worst = fmax(worst, fabs(wa - wb));
+      worst119 = fmax(worst119, fabs(w119 - wb));
+    }
+    CHECK(worst < 1e-13, "%s: row sum and node volume differ by %.3g (equivalent nodes)", eq[c].quad,
+          worst);
+    CHECK(worst119 < 1e-12, "%s: eq. 119 from the stencil and the Bloch symbol differ by %.3g",
+          eq[c].quad, worst119);
+    mfs_free(e);
+    mfs_disp_plan_free(pa);
+    mfs_disp_plan_free(pb);
+  }
+}
+
 int main(void)
 {
   table2();
@@ -528,5 +608,6 @@ int main(void)
   consistent_frame();
   hermitian_real();
   errors();
+  node_volume();
   return check_summary("test_dispersion");
 }

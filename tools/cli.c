@@ -8,6 +8,7 @@
 #include <stdarg.h>
 #include <stdlib.h>
 #include <string.h>
+#include <sys/resource.h>
 #include <sys/stat.h>
 #include <unistd.h>
 
@@ -464,7 +465,7 @@ const char *cli_quad_names(int dim, mfs_lattice_kind lat, char *buf, size_t len)
 /* ---- discretization options ---- */
 
 static const char *const lattice_names[] = {"line", "square", "hex", NULL};
-static const char *const mass_names[] = {"lumped", "consistent", NULL};
+static const char *const mass_names[] = {"lumped", "consistent", "volume", NULL};
 static const char *const physics_names[] = {"antiplane", "plane-strain", NULL};
 
 static const void *find_kernel(const char *n)
@@ -500,8 +501,10 @@ const cli_opt cli_disc_opts[] = {
    .help = "the quadrature rule (default nodal; docs/commands.md says which lattice "
            "each needs)",
    .offset = DOFF(quadrature), .find = find_quad, .list = (const void *const *)mfs_quad_types},
-  {.name = "--mass", .type = CLI_CHOICE, .arg = "lumped|consistent",
-   .help = "mass matrix (default lumped, row sum)", .offset = DOFF(mass), .choices = mass_names},
+  {.name = "--mass", .type = CLI_CHOICE, .arg = "lumped|consistent|volume",
+   .help = "mass matrix (default lumped, row sum, eq. 131); volume: lumped as density times the "
+           "node volume, eq. 119 (dispersion and stencil only)",
+   .offset = DOFF(mass), .choices = mass_names},
   {.name = "--modulus", .type = CLI_REAL, .arg = "C",
    .help = "tangent modulus (E in 1D, shear modulus in 2D; default 1)", .offset = DOFF(modulus),
    .bounds = CLI_GE | CLI_LE, .lo = 1e-30, .hi = 1e30},
@@ -514,7 +517,9 @@ const cli_opt cli_disc_opts[] = {
   {.name = "--gamma", .type = CLI_REAL, .arg = "G", .help = "dy/dx of the square lattice (default 1)",
    .offset = DOFF(gamma), .bounds = CLI_GE | CLI_LE, .lo = 1e-6, .hi = 1e6},
   {.name = "--max-entries", .type = CLI_REAL, .arg = "N",
-   .help = "refuse a plan of more neighbour entries (default 5e8, about 15 GB in 2D)",
+   .help = "refuse a plan of more neighbour entries (default 5e8, and a model whose\n"
+           "estimated memory exceeds what is available; a value given here skips the\n"
+           "memory check)",
    .offset = DOFF(max_entries), .bounds = CLI_GE | CLI_LE, .lo = 1, .hi = 1e15},
   {.type = CLI_END}};
 
@@ -547,7 +552,7 @@ void cli_disc_defaults(cli_disc *d)
                   .gamma = 1.0,
                   .physics = 0,
                   .poisson = 0.25,
-                  .max_entries = CLI_MAX_ENTRIES};
+                  .max_entries = 0.0};
 }
 
 mfs_disc cli_disc_build(const cli_disc *o, const unsigned char *seen)
@@ -575,6 +580,13 @@ mfs_disc cli_disc_build(const cli_disc *o, const unsigned char *seen)
   d.shape = o->shape;
   d.quadrature = o->quadrature;
   d.consistent_mass = o->mass == 1;
+  d.node_volume_mass = o->mass == 2;
+  /* the element bound, the Gershgorin rows of the checks and the solvers are
+   * written for the row sum: the node-volume mass is for the lattice analyses */
+  if (d.node_volume_mass && strcmp(cli_command, "dispersion") != 0 &&
+      strcmp(cli_command, "stencil") != 0)
+    cli_die(2, "--mass volume: only dispersion and stencil take it; allowed here: lumped, "
+               "consistent");
   d.material = (mfs_material){.physics = o->physics == 1 ? MFS_PHYS_PLANE_STRAIN : MFS_PHYS_SCALAR,
                               .modulus = o->modulus,
                               .poisson = o->poisson,
@@ -582,13 +594,63 @@ mfs_disc cli_disc_build(const cli_disc *o, const unsigned char *seen)
   return d;
 }
 
+/* The memory this process may still take, in bytes (0 if unknown): the
+ * least of MemAvailable (/proc/meminfo), a cgroup v2 limit less its use, and
+ * RLIMIT_AS. */
+static double available_memory(void)
+{
+  double best = 0.0;
+  FILE *f = fopen("/proc/meminfo", "r");
+  if (f) {
+    char line[128];
+    double kb;
+    while (fgets(line, sizeof line, f))
+      if (sscanf(line, "MemAvailable: %lf kB", &kb) == 1)
+        best = kb * 1024.0;
+    fclose(f);
+  }
+  double lim = 0.0, cur = 0.0;
+  f = fopen("/sys/fs/cgroup/memory.max", "r");
+  if (f) {
+    if (fscanf(f, "%lf", &lim) != 1)
+      lim = 0.0; /* "max": no limit */
+    fclose(f);
+  }
+  f = lim > 0.0 ? fopen("/sys/fs/cgroup/memory.current", "r") : NULL;
+  if (f) {
+    if (fscanf(f, "%lf", &cur) != 1)
+      cur = 0.0;
+    fclose(f);
+  }
+  if (lim > 0.0 && (best == 0.0 || lim - cur < best))
+    best = lim - cur > 0.0 ? lim - cur : 1.0;
+  struct rlimit rl;
+  if (getrlimit(RLIMIT_AS, &rl) == 0 && rl.rlim_cur != RLIM_INFINITY &&
+      (best == 0.0 || (double)rl.rlim_cur < best))
+    best = (double)rl.rlim_cur;
+  return best;
+}
+
+double cli_available_memory(void)
+{
+  return available_memory();
+}
+
 void cli_check_work(const cli_disc *o, const mfs_disc *d, double n, const char *what)
 {
   double entries = mfs_disc_plan_entries(d, n, NULL);
-  if (!(entries <= o->max_entries))
-    cli_die(2, "%s: about %.3g neighbour entries in the plan, more than --max-entries %.3g; "
+  double lim = o->max_entries > 0.0 ? o->max_entries : CLI_MAX_ENTRIES;
+  if (!(entries <= lim))
+    cli_die(2, "%s: about %.3g neighbour entries in the plan, more than --max-entries %.3g%s; "
                "lower the dilation or the nodes, or raise --max-entries",
-            what, entries, o->max_entries);
+            what, entries, lim, o->max_entries > 0.0 ? "" : " (the default)");
+  if (o->max_entries > 0.0)
+    return; /* the user's own limit: no memory check */
+  double bytes = mfs_disc_model_bytes(d, n), mem = available_memory();
+  if (mem > 0.0 && bytes > mem)
+    cli_die(2, "%s: needs about %.3g GB, and %.3g GB of memory are available; lower the "
+               "dilation or the nodes, or give --max-entries to try anyway",
+            what, bytes / 1e9, mem / 1e9);
 }
 
 _Noreturn void cli_die_status(mfs_status status, const cli_disc *d, double dilation,

@@ -124,7 +124,7 @@ typedef struct {
   double modulus, density, spacing, gamma;
   int physics;                     /* antiplane (scalar), plane-strain */
   double poisson;
-  double max_entries;              /* the limit on a plan's neighbour entries */
+  double max_entries;              /* the limit on a plan's neighbour entries (0: the default) */
 } cli_disc;
 
 extern const cli_opt cli_disc_opts[];     /* --dim .. --gamma */
@@ -147,6 +147,10 @@ mfs_disc cli_disc_build(const cli_disc *o, const unsigned char *seen_disc);
  * hold more than o->max_entries neighbour entries (mfs_disc_plan_entries),
  * naming what makes it large (`what`: "--dilation 40 on 10^6 nodes") and the
  * override --max-entries. */
+/* The memory this process may still take, in bytes (0 if unknown): the
+ * least of MemAvailable, a cgroup v2 limit less its use, and RLIMIT_AS. */
+double cli_available_memory(void);
+
 void cli_check_work(const cli_disc *o, const mfs_disc *d, double n, const char *what);
 
 /* Die with the right message and code for a library status met while

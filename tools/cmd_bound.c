@@ -14,6 +14,7 @@
 #include "commands.h"
 #include "eigs_figures.h"
 #include "model_run.h"
+#include "par.h"
 
 static const char usage[] = "mfstab bound [options] [-o FILE]";
 static const char about[] =
@@ -39,7 +40,9 @@ static const char about[] =
   "  (unsafe: 1 above 2/sqrt(lambda_lanczos) >= dt_crit, 0 at most dt_certified, else\n"
   "  empty; empty without --certify)\n"
   "  with --certify: lambda_lanczos,sigma_certified,dt_certified,certify_margin,\n"
-  "  certify_factorizations\n";
+  "  certify_factorizations\n"
+  "Under mpirun -np N the Gershgorin and element bounds run over the ranks (docs/parallel.md);\n"
+  "--certify needs one process.\n";
 
 /* The plan of the model (geometry, neighbour lists, shape table), for the
  * Gershgorin rows and, on a set or a perturbed lattice, the element bound. */
@@ -81,6 +84,39 @@ static void plan_free(model_plan *mp)
   mfs_free(mp->fixed);
 }
 
+/* The element and Gershgorin bounds in one process. */
+static void bound_serial(const model_cmd *c, mfs_bound_result *br, mfs_gershgorin_result *gr,
+                         double *gx, size_t *mI, size_t *np, size_t *npts)
+{
+  const mfs_disc *d = &c->s.disc;
+  size_t bad = 0;
+  mfs_status st;
+  model_plan mp;
+  plan_build(c, &mp);
+  int lattice = !mfs_disc_points(d) && !(d->source.perturb > 0.0);
+  if (lattice) /* the streaming bound: equivalent points evaluated once */
+    st = mfs_bound_model(&c->s, br, &bad);
+  else
+    st = mfs_bound_plan(mp.pl, &d->material, mp.fixed, br);
+  if (st != MFS_OK)
+    model_die_status(c, st, bad, "at a quadrature point of the model");
+  if (!(br->lambda > 0.0))
+    cli_die(1, "the element bound is %g: no quadrature point with a positive lambda^Q", br->lambda);
+  if (!d->consistent_mass) {
+    st = mfs_gershgorin_plan(mp.pl, &d->material, mp.fixed, gr);
+    if (st != MFS_OK)
+      cli_die(1, "Gershgorin bound: %s", mfs_strerror(st));
+  }
+  *np = mp.p->n;
+  *npts = mfs_plan_npoints(mp.pl);
+  int ndof = mfs_physics_ndof(d->material.physics);
+  if (isfinite(gr->lambda))
+    for (int k = 0; k < d->dim; k++)
+      gx[k] = mp.p->x[(gr->argmax / (size_t)ndof) * (size_t)d->dim + (size_t)k];
+  *mI = gr->argmin_mass / (size_t)ndof;
+  plan_free(&mp);
+}
+
 int cmd_bound(int argc, char **argv)
 {
   model_cmd c = {.m = {.fourier_points = 201, .fourier_angles = 7, .seed = 1}};
@@ -94,33 +130,16 @@ int cmd_bound(int argc, char **argv)
   eigs_derive(&c.s, &dv);
   const mfs_disc *d = &c.s.disc;
   mfs_bound_result br;
-  size_t bad = 0;
+  size_t bad = 0, np, npts, mI;
   mfs_status st;
-  model_plan mp;
-  plan_build(&c, &mp);
-  int lattice = !mfs_disc_points(d) && !(d->source.perturb > 0.0);
-  if (lattice) /* the streaming bound: equivalent points evaluated once */
-    st = mfs_bound_model(&c.s, &br, &bad);
-  else
-    st = mfs_bound_plan(mp.pl, &d->material, mp.fixed, &br);
-  if (st != MFS_OK)
-    model_die_status(&c, st, bad, "at a quadrature point of the model");
-  if (!(br.lambda > 0.0))
-    cli_die(1, "the element bound is %g: no quadrature point with a positive lambda^Q", br.lambda);
-  mfs_gershgorin_result gr = {.lambda = NAN, .min_mass = NAN};
-  if (!d->consistent_mass) {
-    st = mfs_gershgorin_plan(mp.pl, &d->material, mp.fixed, &gr);
-    if (st != MFS_OK)
-      cli_die(1, "Gershgorin bound: %s", mfs_strerror(st));
-  }
-  size_t np = mp.p->n, npts = mfs_plan_npoints(mp.pl);
-  int ndof = mfs_physics_ndof(d->material.physics);
   double gx[2] = {NAN, NAN};
-  if (isfinite(gr.lambda))
-    for (int k = 0; k < d->dim; k++)
-      gx[k] = mp.p->x[(gr.argmax / (size_t)ndof) * (size_t)d->dim + (size_t)k];
-  size_t mI = gr.argmin_mass / (size_t)ndof;
-  plan_free(&mp);
+  mfs_gershgorin_result gr = {.lambda = NAN, .min_mass = NAN};
+  if (par_active() && c.m.certify)
+    par_need_one("--certify");
+  if (par_active() && !c.m.certify) /* mpirun: over the ranks (tools/model_prun.c) */
+    bound_prun(&c, &br, &gr, gx, &mI, &np, &npts);
+  else
+    bound_serial(&c, &br, &gr, gx, &mI, &np, &npts);
   double lf, kf, tf;
   st = mfs_bound_fourier(&c.s, (int)c.m.fourier_points, (int)c.m.fourier_angles, &lf, &kf, &tf);
   if (st != MFS_OK)
@@ -154,7 +173,7 @@ int cmd_bound(int argc, char **argv)
   double dtcert = have_cert ? mfs_dt_crit(cr.lambda_upper) : NAN;
 
   cli_out out;
-  cli_out_open(&out, c.m.out);
+  cli_out_open(&out, par_out_path(c.m.out));
   FILE *f = out.f;
   eigs_config_header(f);
   fputs(",particles,quadrature_points,evaluated_points,bound,bound_valid,negative_phi_points,"

@@ -115,6 +115,50 @@ static const cli_opt opts[] = {
   {.type = CLI_END}};
 #undef OFF
 
+/* The curves are evaluated in parallel (OpenMP) over chunks of CURVE_CHUNK
+ * wave numbers of every angle, all stresses at once (mfs_disp_ray); every
+ * point is computed on its own, so the file is the same for any number of
+ * threads.  Then written in order. */
+#ifdef _OPENMP
+#define MFS_OMP(x) _Pragma(x)
+#else
+#define MFS_OMP(x)
+#endif
+
+enum { CURVE_CHUNK = 256 };
+
+/* omega^2 of plan pl at the stresses sig[0..nsig), angles thr[0..nth) and
+ * wave numbers kap[t nk + i] into w[((s nth + t) nk + i) nb + b]; cst holds a
+ * status per chunk.  A failure names the first failing point (in the order
+ * of the file) and exits 1. */
+static void curves(const mfs_disp_plan *pl, const double *sig, size_t nsig, const double *thr,
+                   size_t nth, const double *kap, size_t nk, double complex *w, mfs_status *cst)
+{
+  const size_t nb = (size_t)mfs_disp_branches(pl), nch = (nk + CURVE_CHUNK - 1) / CURVE_CHUNK;
+  const long ntask = (long)(nth * nch);
+  MFS_OMP("omp parallel for schedule(dynamic) if (ntask > 1)")
+  for (long task = 0; task < ntask; task++) {
+    size_t t = (size_t)task / nch, c0 = ((size_t)task % nch) * CURVE_CHUNK;
+    size_t len = nk - c0 < CURVE_CHUNK ? nk - c0 : CURVE_CHUNK;
+    cst[task] = mfs_disp_ray(pl, sig, nsig, thr[t], kap + t * nk + c0, len,
+                             w + (t * nk + c0) * nb, nth * nk * nb);
+  }
+  for (long task = 0; task < ntask; task++) {
+    if (cst[task] == MFS_OK)
+      continue;
+    for (size_t s = 0; s < nsig; s++)
+      for (size_t t = 0; t < nth; t++)
+        for (size_t i = 0; i < nk; i++) {
+          double complex om[4];
+          mfs_status st = mfs_disp_omega2(pl, sig[s], kap[t * nk + i], thr[t], om);
+          if (st != MFS_OK)
+            cli_die(1, "omega^2 at kappa %g, sigma %g: %s (singular mass symbol?)", kap[t * nk + i],
+                    sig[s], mfs_strerror(st));
+        }
+    cli_die(1, "omega^2: %s", mfs_strerror(cst[task]));
+  }
+}
+
 static void put(FILE *f, double v)
 {
   cli_put_num(f, v, "a dispersion value");
@@ -147,7 +191,7 @@ static void config(FILE *f, const mfs_disc *d, const char *latn, double dil, con
 {
   fprintf(f, "%d,%s,%s,%s,%s,%s,%s,", d->dim, latn, d->kernel->name, d->shape->name,
           d->quadrature->name, mfs_frame_name(d->frame),
-          d->consistent_mass ? "consistent" : "lumped");
+          d->consistent_mass ? "consistent" : d->node_volume_mass ? "volume" : "lumped");
   putc_num(f, dil);
   fprintf(f, "%s,%s,", physics_name(d), mat);
   int plane = d->material.physics == MFS_PHYS_PLANE_STRAIN;
@@ -288,10 +332,18 @@ int cmd_dispersion(int argc, char **argv)
   }
   int nk = o.kappa.n ? (int)o.kappa.n : (int)o.points;
   const int nb = mfs_disp_branches(plans[0]);
-  double *kap = mfs_malloc((size_t)nk * sizeof *kap);
-  double complex *w = mfs_malloc((size_t)nk * (size_t)nb * sizeof *w);
+  /* the curves of one dilation: kappa per angle, omega^2 per (stress, angle, kappa) */
+  double *kap = NULL;
+  double complex *w = NULL;
+  size_t nray = nth * (size_t)nk, nchunk = nth * (((size_t)nk + CURVE_CHUNK - 1) / CURVE_CHUNK);
+  mfs_status *cst = NULL;
+  if (!o.classify) {
+    kap = mfs_malloc(nray * sizeof *kap);
+    w = mfs_malloc(nsig * nray * (size_t)nb * sizeof *w);
+    cst = mfs_malloc(nchunk * sizeof *cst);
+  }
   mfs_class *cls = mfs_malloc(nsig * sizeof *cls);
-  if (!kap || !w || !cls)
+  if ((!o.classify && (!kap || !w || !cst)) || !cls)
     cli_die(1, "out of memory");
   const char *latn = disc.source.lattice == MFS_LATTICE_LINE  ? "line"
                      : disc.source.lattice == MFS_LATTICE_HEX ? "hex"
@@ -355,30 +407,30 @@ int cmd_dispersion(int argc, char **argv)
       }
       continue;
     }
+    for (size_t t = 0; t < nth; t++) {
+      double km = mfs_disp_kappa_max(pl, thr[t]);
+      for (int i = 0; i < nk; i++)
+        kap[t * nk + i] = o.kappa.n ? o.kappa.v[i] : km * i / (nk - 1);
+    }
+    curves(pl, sig, nsig, thr, nth, kap, (size_t)nk, w, cst);
     for (size_t s_ = 0; s_ < nsig; s_++) {
       mfs_plane_state ps;
       int have = plane && mfs_disp_state(pl, sig[s_], &ps) == MFS_OK;
       for (size_t t = 0; t < nth; t++) {
-        double km = mfs_disp_kappa_max(pl, thr[t]);
+        const double *kp = kap + t * nk;
+        const double complex *wt = w + (s_ * nth + t) * (size_t)nk * nb;
         for (int i = 0; i < nk; i++) {
-          kap[i] = o.kappa.n ? o.kappa.v[i] : km * i / (nk - 1);
-          mfs_status st = mfs_disp_omega2(pl, sig[s_], kap[i], thr[t], w + (size_t)i * nb);
-          if (st != MFS_OK)
-            cli_die(1, "omega^2 at kappa %g, sigma %g: %s (singular mass symbol?)", kap[i], sig[s_],
-                    mfs_strerror(st));
-        }
-        for (int i = 0; i < nk; i++) {
-          double k[2] = {kap[i] * M_PI * cos(thr[t]), kap[i] * M_PI * sin(thr[t])}, kc[2];
+          double k[2] = {kp[i] * M_PI * cos(thr[t]), kp[i] * M_PI * sin(thr[t])}, kc[2];
           if (disc.dim == 1)
-            k[1] = 0.0, k[0] = kap[i] * M_PI;
+            k[1] = 0.0, k[0] = kp[i] * M_PI;
           mfs_disp_current_k(pl, k, kc);
           for (int b = 0; b < nb; b++) {
-            double complex w2 = w[(size_t)i * nb + b], wr = csqrt(w2);
+            double complex w2 = wt[(size_t)i * nb + b], wr = csqrt(w2);
             double sx = have ? ps.sigma[0] : sig[s_];
             config(f, &disc, latn, dil[di], matn, sp, have ? &ps : NULL);
             putc_num(f, sx);
             putc_num(f, th[t]);
-            putc_num(f, kap[i]);
+            putc_num(f, kp[i]);
             putc_num(f, kc[0] / M_PI);
             putc_num(f, disc.dim > 1 ? kc[1] / M_PI : NAN);
             fprintf(f, "%d,", b);
@@ -388,7 +440,7 @@ int cmd_dispersion(int argc, char **argv)
             put(f, fabs(cimag(wr)));
             if (si.on) {
               fputc(',', f);
-              putc_num(f, kap[i] * M_PI / si.dx);
+              putc_num(f, kp[i] * M_PI / si.dx);
               putc_num(f, fabs(creal(wr)) * si.c / si.dx);
               putc_num(f, fabs(cimag(wr)) * si.c / si.dx);
               put(f, sx * si.C);
@@ -405,6 +457,7 @@ int cmd_dispersion(int argc, char **argv)
   mfs_free(plans);
   mfs_free(kap);
   mfs_free(w);
+  mfs_free(cst);
   mfs_free(cls);
   mfs_free(thr);
   mfs_free(d.dilation.v);

@@ -14,6 +14,7 @@
 #include "commands.h"
 #include "eigs_figures.h"
 #include "model_run.h"
+#include "par.h"
 
 static const char usage[] = "mfstab eigs [options] [-o FILE]";
 static const char about[] =
@@ -670,7 +671,7 @@ static void eigs_row(FILE *f, const model_cmd *c, const run_result *r, const eig
 {
   eigs_config_row(f, c, &c->s, &r->dv);
   double lam = r->have_lambda ? r->lambda : NAN;
-  fprintf(f, ",%zu,", r->m ? r->m->n : (size_t)0);
+  fprintf(f, ",%zu,", r->dofs);
   eigs_put(f, lam, 0);
   eigs_put(f, sqrt(lam), 0);
   eigs_put(f, r->br.lambda, 0);
@@ -691,15 +692,14 @@ static void eigs_row(FILE *f, const model_cmd *c, const run_result *r, const eig
   eigs_put(f, r->have_lambda ? r->resid : NAN, 0);
   fprintf(f, "%zu,%zu,", r->particles, r->nonpositive);
   eigs_put(f, r->min_mass, 0);
-  const mfs_particles *p = r->m->p;
   size_t I = r->min_mass_particle;
   int cm = c->s.disc.consistent_mass;
   if (cm)
     fputs(",,,", f);
   else {
     fprintf(f, "%zu,", I);
-    eigs_put(f, p->x[I * p->dim], 0);
-    eigs_put(f, p->dim == 2 ? p->x[I * p->dim + 1] : NAN, 0);
+    eigs_put(f, r->min_mass_x[0], 0);
+    eigs_put(f, r->min_mass_x[1], 0);
   }
   eigs_put(f, r->g.lambda, 0);
   eigs_put(f, mfs_dt_crit(r->g.lambda), 0);
@@ -770,6 +770,18 @@ int cmd_eigs(int argc, char **argv)
   run_opts ro = {.zero_modes = e.zero_modes, .tol = e.tol, .nev = e.nev, .ncv = e.ncv,
                  .maxiter = e.maxiter, .arpack_tol = e.arpack_tol, .certify = c.m.certify,
                  .keep = 1};
+  if (par_active()) { /* mpirun: distributed, unless an option needs one process */
+    const char *one = e.modes_prefix            ? "--write-modes"
+                      : e.zero_modes            ? "--zero-modes"
+                      : c.m.certify             ? "--certify"
+                      : e.export_prefix         ? "--export-mtx"
+                      : nseeds                  ? "--seeds"
+                      : c.s.disc.consistent_mass ? "--mass consistent"
+                                                : NULL;
+    if (one)
+      par_need_one(one);
+    ro.distributed = !one;
+  }
   size_t nrun = nseeds ? (size_t)nseeds : 1;
   run_result *rr = mfs_calloc(nrun, sizeof *rr);
   double *lv = mfs_malloc(nrun * sizeof *lv), *zv = mfs_malloc(nrun * sizeof *zv),
@@ -808,7 +820,7 @@ int cmd_eigs(int argc, char **argv)
     write_modes(&c, &rr[0], e.modes_prefix);
 
   cli_out out;
-  cli_out_open(&out, c.m.out);
+  cli_out_open(&out, par_out_path(c.m.out));
   FILE *f = out.f;
   eigs_config_header(f);
   fputs(",dofs,lambda_max,omega_max,bound,bound_valid,negative_phi_points,bound_alpha,alpha,"
@@ -838,13 +850,13 @@ int cmd_eigs(int argc, char **argv)
   cli_out_release();
   for (size_t k = 0; k < nrun; k++) {
     if (rr[k].nonpositive > 0 && !nseeds) {
-      const mfs_particles *p = rr[k].m->p;
       size_t I = rr[k].min_mass_particle;
+      const double *xI = rr[k].min_mass_x;
       char where[96];
-      if (p->dim == 1)
-        snprintf(where, sizeof where, "x = %g", p->x[I]);
+      if (c.s.disc.dim == 1)
+        snprintf(where, sizeof where, "x = %g", xI[0]);
       else
-        snprintf(where, sizeof where, "(%g, %g)", p->x[2 * I], p->x[2 * I + 1]);
+        snprintf(where, sizeof where, "(%g, %g)", xI[0], xI[1]);
       char line[64] = "";
       if (c.have_file)
         snprintf(line, sizeof line, ", %s:%zu", c.pf.path, particle_file_line(&c.pf, I));

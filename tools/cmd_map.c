@@ -137,6 +137,32 @@ static int parse_frames(const char *s, mfs_frame *fr)
   return n;
 }
 
+/* The grid points are evaluated in parallel (OpenMP), each on its own with a
+ * workspace per thread, and written in order: the file is the same for any
+ * number of threads. */
+#ifdef _OPENMP
+#include <omp.h>
+#define MFS_OMP(x) _Pragma(x)
+static int map_threads(void)
+{
+  return omp_get_max_threads();
+}
+static int map_thread(void)
+{
+  return omp_get_thread_num();
+}
+#else
+#define MFS_OMP(x)
+static int map_threads(void)
+{
+  return 1;
+}
+static int map_thread(void)
+{
+  return 0;
+}
+#endif
+
 /* What the map writes for one state and frame. */
 typedef struct {
   int singular, stable, zeros;
@@ -172,12 +198,15 @@ static mfs_status eval_point(const mfs_disp_plan *pl, const mfs_disp_sample *smp
     kall[2 * (nz + i)] = kap * cos(th);
     kall[2 * (nz + i) + 1] = kap * sin(th);
   }
-  for (size_t i = 0; i < ntot; i++) {
-    mfs_status s = smp && i < nz ? mfs_disp_sample_omega2(smp, i, st, w + i * (size_t)nb)
-                                 : mfs_disp_omega2_state(pl, st, kall + 2 * i, w + i * (size_t)nb);
+  size_t i0 = smp ? nz : 0; /* the zone from the sample, the rest at once */
+  for (size_t i = 0; i < i0; i++) {
+    mfs_status s = mfs_disp_sample_omega2(smp, i, st, w + i * (size_t)nb);
     if (s != MFS_OK)
       return s;
   }
+  mfs_status e = mfs_disp_omega2_states(pl, st, ntot - i0, kall + 2 * i0, w + i0 * (size_t)nb);
+  if (e != MFS_OK)
+    return e;
   double scale = 0.0;
   for (size_t i = 0; i < ntot * (size_t)nb; i++)
     scale = fmax(scale, cabs(w[i]));
@@ -300,10 +329,18 @@ int cmd_map(int argc, char **argv)
   const double *dil = d.dilation.n ? d.dilation.v : &dil1;
   size_t ndil = d.dilation.n ? d.dilation.n : 1;
 
+  /* workspaces per thread: zone samples (a per-state plan's own), all samples, omega^2 */
   size_t nz = (size_t)(o.directions * o.wavenumbers), nw = (size_t)o.wavenumbers + 2;
-  double *kz = mfs_malloc(2 * nz * sizeof *kz), *kall = mfs_malloc(2 * (nz + nw) * sizeof *kall);
-  double complex *w = mfs_malloc((nz + nw) * 4 * sizeof *w);
-  if (!kz || !kall || !w)
+  size_t npt = (size_t)ng * (size_t)ng;
+  int nthr = map_threads();
+  double *kz = mfs_malloc(2 * nz * (size_t)nthr * sizeof *kz);
+  double *kall = mfs_malloc(2 * (nz + nw) * (size_t)nthr * sizeof *kall);
+  double complex *w = mfs_malloc((nz + nw) * 4 * (size_t)nthr * sizeof *w);
+  map_point *mps = mfs_malloc(npt * sizeof *mps);
+  mfs_plane_state *pss = mfs_malloc(npt * sizeof *pss);
+  mfs_ellipticity *pdes = mfs_malloc(npt * sizeof *pdes);
+  mfs_status *pst = mfs_malloc(2 * npt * sizeof *pst);
+  if (!kz || !kall || !w || !mps || !pss || !pdes || !pst)
     cli_die(1, "out of memory");
   const char *latn = disc.source.lattice == MFS_LATTICE_HEX ? "hex" : "square";
   cli_out out;
@@ -344,68 +381,86 @@ int cmd_map(int argc, char **argv)
         if (!smp)
           cli_die(1, "map: %s", mfs_strerror(st));
       }
-      for (long i = 0; i < ng; i++)
-        for (long j = 0; j < ng; j++) {
-          double x = grid[i], y = grid[j];
-          mfs_plane_state ps;
-          mfs_status st = stretch_map
-                            ? mfs_plane_state_stretch(&mat, x, y, &ps)
-                            : mfs_plane_state_linear(disc.material.poisson, x, y, o.stress_xy, &ps);
-          if (st != MFS_OK)
-            cli_die(2, "%s: (%g, %g) is not a valid state of the %s material",
-                    stretch_map ? "--stretch-range" : "--stress-range", x, y, mat.type->name);
-          mfs_ellipticity pde;
-          if (mfs_ellipticity_check(ps.a, 0, &pde) != MFS_OK)
-            cli_die(1, "the acoustic tensor at (%g, %g) is not finite", x, y);
-          map_point mp = {0};
-          mfs_disp_plan *own = NULL;
-          if (per_state) {
-            mfs_disp_spec sp = base;
-            sp.stretch = x;
-            sp.stretch_y = y;
-            own = mfs_disp_plan_alloc(&sp, &st);
-            if (!own && st != MFS_ESINGULAR)
-              cli_die(st == MFS_ENOTSUP || st == MFS_EINVAL ? 2 : 1,
-                      "--frame %s at stretches (%g, %g): %s", mfs_frame_name(dd.frame), x, y,
-                      st == MFS_ENOTSUP ? "not covered for this shape" : mfs_strerror(st));
-            mp.singular = own == NULL;
-            if (own)
-              zone(own, o.directions, o.wavenumbers, kz);
-          }
-          if (!mp.singular) {
-            st = eval_point(own ? own : pl, own ? NULL : smp, kz, nz, o.wavenumbers, &ps, &pde, w,
-                            kall, &mp);
-            if (st != MFS_OK)
-              cli_die(1, "omega^2 at (%g, %g): %s", x, y, mfs_strerror(st));
-          }
-          mfs_disp_plan_free(own);
-          fprintf(f, "%s,%s,%s,%s,%s,%s,", latn, dd.kernel->name, dd.shape->name,
-                  dd.quadrature->name, mfs_frame_name(dd.frame),
-                  dd.consistent_mass ? "consistent" : "lumped");
-          putc_num(f, dil[di]);
-          fprintf(f, "%s,%s,", mat.type->name,
-                  eul && stretch_map ? support_names[o.support] : "");
-          double v[] = {ps.l[0], ps.l[1], ps.J, ps.sigma[0], ps.sigma[3], ps.sigma[1]};
-          for (int k = 0; k < 6; k++)
-            putc_num(f, v[k]);
-          fprintf(f, "%d,", mfs_pde_stable(&pde));
-          putc_num(f, pde.q_min);
-          putc_num(f, pde.theta * 180.0 / M_PI);
-          if (mp.singular) {
-            fprintf(f, ",,,,,,,,%ssingular\n", si ? "," : "");
-            continue;
-          }
-          fprintf(f, "%d,", mp.stable);
-          double v2[] = {mp.min_re, mp.max_growth, mp.kw[0] / M_PI, mp.kw[1] / M_PI,
-                         mp.kwc[0] / M_PI, mp.kwc[1] / M_PI};
-          for (int k = 0; k < 6; k++)
-            putc_num(f, v2[k]);
-          fprintf(f, "%d,", mp.zeros);
-          if (si)
-            putc_num(f, mp.max_growth * csi);
-          char lab[96];
-          fprintf(f, "%s\n", mfs_class_label(mp.labels, lab, sizeof lab));
+      /* the states and the PDE, in order (a bad state names itself) */
+      for (size_t q = 0; q < npt; q++) {
+        double x = grid[q / (size_t)ng], y = grid[q % (size_t)ng];
+        mfs_status st = stretch_map
+                          ? mfs_plane_state_stretch(&mat, x, y, pss + q)
+                          : mfs_plane_state_linear(disc.material.poisson, x, y, o.stress_xy, pss + q);
+        if (st != MFS_OK)
+          cli_die(2, "%s: (%g, %g) is not a valid state of the %s material",
+                  stretch_map ? "--stretch-range" : "--stress-range", x, y, mat.type->name);
+        if (mfs_ellipticity_check(pss[q].a, 0, pdes + q) != MFS_OK)
+          cli_die(1, "the acoustic tensor at (%g, %g) is not finite", x, y);
+      }
+      /* the discretization at every grid point, in parallel: each point on its own */
+      const long ntask = (long)npt;
+      MFS_OMP("omp parallel for schedule(dynamic) if (ntask > 1)")
+      for (long q = 0; q < ntask; q++) {
+        int th = map_thread();
+        double *kzt = per_state ? kz + 2 * nz * (size_t)th : kz;
+        map_point mp = {0};
+        mfs_disp_plan *own = NULL;
+        mfs_status st = MFS_OK;
+        if (per_state) {
+          mfs_disp_spec sp = base;
+          sp.stretch = grid[q / ng];
+          sp.stretch_y = grid[q % ng];
+          own = mfs_disp_plan_alloc(&sp, &st);
+          mp.singular = own == NULL && st == MFS_ESINGULAR;
+          if (own)
+            zone(own, o.directions, o.wavenumbers, kzt);
         }
+        pst[2 * q] = own || !per_state || mp.singular ? MFS_OK : st;
+        pst[2 * q + 1] = MFS_OK;
+        if (!mp.singular && (own || !per_state))
+          pst[2 * q + 1] = eval_point(own ? own : pl, own ? NULL : smp, kzt, nz, o.wavenumbers,
+                                      pss + q, pdes + q, w + (nz + nw) * 4 * (size_t)th,
+                                      kall + 2 * (nz + nw) * (size_t)th, &mp);
+        mfs_disp_plan_free(own);
+        mps[q] = mp;
+      }
+      for (size_t q = 0; q < npt; q++) { /* the first failure, in order */
+        double x = grid[q / (size_t)ng], y = grid[q % (size_t)ng];
+        mfs_status st = pst[2 * q];
+        if (st != MFS_OK)
+          cli_die(st == MFS_ENOTSUP || st == MFS_EINVAL ? 2 : 1,
+                  "--frame %s at stretches (%g, %g): %s", mfs_frame_name(dd.frame), x, y,
+                  st == MFS_ENOTSUP ? "not covered for this shape" : mfs_strerror(st));
+        if (pst[2 * q + 1] != MFS_OK)
+          cli_die(1, "omega^2 at (%g, %g): %s", x, y, mfs_strerror(pst[2 * q + 1]));
+      }
+      for (size_t q = 0; q < npt; q++) {
+        const mfs_plane_state ps = pss[q];
+        const mfs_ellipticity pde = pdes[q];
+        const map_point mp = mps[q];
+        fprintf(f, "%s,%s,%s,%s,%s,%s,", latn, dd.kernel->name, dd.shape->name,
+                dd.quadrature->name, mfs_frame_name(dd.frame),
+                dd.consistent_mass ? "consistent" : "lumped");
+        putc_num(f, dil[di]);
+        fprintf(f, "%s,%s,", mat.type->name,
+                eul && stretch_map ? support_names[o.support] : "");
+        double v[] = {ps.l[0], ps.l[1], ps.J, ps.sigma[0], ps.sigma[3], ps.sigma[1]};
+        for (int k = 0; k < 6; k++)
+          putc_num(f, v[k]);
+        fprintf(f, "%d,", mfs_pde_stable(&pde));
+        putc_num(f, pde.q_min);
+        putc_num(f, pde.theta * 180.0 / M_PI);
+        if (mp.singular) {
+          fprintf(f, ",,,,,,,,%ssingular\n", si ? "," : "");
+          continue;
+        }
+        fprintf(f, "%d,", mp.stable);
+        double v2[] = {mp.min_re, mp.max_growth, mp.kw[0] / M_PI, mp.kw[1] / M_PI,
+                       mp.kwc[0] / M_PI, mp.kwc[1] / M_PI};
+        for (int k = 0; k < 6; k++)
+          putc_num(f, v2[k]);
+        fprintf(f, "%d,", mp.zeros);
+        if (si)
+          putc_num(f, mp.max_growth * csi);
+        char lab[96];
+        fprintf(f, "%s\n", mfs_class_label(mp.labels, lab, sizeof lab));
+      }
       mfs_disp_sample_free(smp);
       mfs_disp_plan_free(pl);
     }
@@ -414,6 +469,10 @@ int cmd_map(int argc, char **argv)
   mfs_free(kz);
   mfs_free(kall);
   mfs_free(w);
+  mfs_free(mps);
+  mfs_free(pss);
+  mfs_free(pdes);
+  mfs_free(pst);
   mfs_free(d.dilation.v);
   return 0;
 }

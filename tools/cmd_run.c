@@ -23,8 +23,8 @@ static const char about_1d[] =
   "(dim = 2, lib/time/mfs_solver2d.h) described by an INI scene file; writes CSV columns t followed\n"
   "by the probes of [output] probes.\n"
   "Sections and keys (defaults in parentheses; * required):\n"
-  "  [model]          nodes*, length* (m), periodic (0), max_entries (5e8: a larger plan is\n"
-  "                   refused), dim (1 | 2), formulation (displacement |\n"
+  "  [model]          nodes*, length* (m), periodic (0), max_entries (5e8 or what the memory\n"
+  "                   holds: a larger plan is refused), dim (1 | 2), formulation (displacement |\n"
   "                   stress_velocity: the TSPH bar of lib/time/mfs_tsph.h, schemes tsph (default),\n"
   "                   euler, rk2, rk4; [material] yield_stress, fluidity, perzyna_exponent,\n"
   "                   hardening; [discretization] interpolation (shepard | linear),\n"
@@ -235,11 +235,18 @@ mfs_integrator scene_build(scene *sc)
   mfs_disc d = sc->dim == 2 ? scene_model_spec(sc).disc : sc->spec.disc;
   double n = (double)d.source.nx * (sc->dim == 2 ? (double)sc->ny : 1.0);
   double entries = mfs_disc_plan_entries(&d, n, NULL);
-  if (!(entries <= sc->max_entries))
+  double lim = sc->max_entries > 0.0 ? sc->max_entries : CLI_MAX_ENTRIES;
+  if (!(entries <= lim))
     scene_key_error(sc, "discretization", "dilation",
                     "about %.3g neighbour entries in the plan, more than [model] max_entries = "
-                    "%.3g; lower the dilation or the nodes, or raise max_entries",
-                    entries, sc->max_entries);
+                    "%.3g%s; lower the dilation or the nodes, or raise max_entries",
+                    entries, lim, sc->max_entries > 0.0 ? "" : " (the default)");
+  double bytes = mfs_disc_model_bytes(&d, n), mem = cli_available_memory();
+  if (sc->max_entries == 0.0 && mem > 0.0 && bytes > mem)
+    scene_key_error(sc, "discretization", "dilation",
+                    "the model needs about %.3g GB, and %.3g GB of memory are available; lower "
+                    "the dilation or the nodes, or set [model] max_entries to try anyway",
+                    bytes / 1e9, mem / 1e9);
   if (sc->dim == 2) {
     mfs_model_spec ms = scene_model_spec(sc);
     in.type = &mfs_integrator_plate;
@@ -362,6 +369,130 @@ static const cli_opt opts[] = {
    .offset = offsetof(run_opts, out)},
   {.type = CLI_END}};
 
+scene_result scene_run(scene *sc, int write_csv, const char *csv_path, scene_row_fn row, void *ctx,
+                        int keep_failure)
+{
+  scene_result res = {0};
+  cli_out out = {0};
+  FILE *csv = NULL;
+  mfs_integrator in = scene_build(sc);
+  choose_dt(sc, &in);
+  const mfs_integrator_type *T = in.type;
+  const mfs_source *src = &sc->spec.disc.source;
+  size_t center = T->nearest(in.solver, 0.5 * src->lx, 0.5 * sc->ly, sc->component);
+  if (center == (size_t)-1) /* the centre particle is never on the boundary (nodes >= 3) */
+    cli_die(1, "%s: no free particle at the centre of the box", sc->path);
+  initial_state(sc, &in, center);
+
+  mfs_state s;
+  T->state(in.solver, &s);
+  probe_ctx pc = {.sc = sc, .in = &in, .center = center};
+  int need_energy = 0, need_fields = 0, need_mode = 0;
+  for (int p = 0; p < sc->nprobes; p++) {
+    int q = sc->probe[p];
+    need_energy |= q == PROBE_KINETIC || q == PROBE_POTENTIAL || q == PROBE_TOTAL ||
+                   q == PROBE_MODIFIED;
+    need_fields |= q == PROBE_SIGMA_END || q == PROBE_SIGMA_CENTER;
+    need_mode |= q == PROBE_MODE_AMP;
+  }
+  if (s.nq > 0) {
+    pc.qend = nearest_point(s.xq, s.nq, src->lx);
+    pc.qcen = nearest_point(s.xq, s.nq, 0.5 * src->lx);
+  }
+  double *ec = NULL;
+  if (need_mode && s.dim == 2) {
+    ec = mfs_malloc(2 * s.n * sizeof *ec);
+    if (!ec)
+      cli_die(1, "out of memory");
+    double kx = 2.0 * M_PI * sc->mode_x / src->lx, ky = 2.0 * M_PI * sc->mode_y / sc->ly;
+    for (size_t i = 0; i < s.n; i++) {
+      double ph = kx * s.X[i] + ky * s.Y[i];
+      int on = s.comp[i] == sc->component;
+      ec[i] = on ? cos(ph) : 0.0;
+      ec[s.n + i] = on ? -sin(ph) : 0.0;
+      pc.nmode += (size_t)on;
+    }
+    pc.ec = ec;
+    pc.es = ec + s.n;
+  }
+
+  double steps = ceil(sc->end / s.dt * (1.0 - 1e-12));
+  if (!(steps <= (double)sc->max_steps)) {
+    T->free(in.solver);
+    scene_key_error(sc, "time", "end",
+                    "%.4g steps of %.4g s; more than [time] max_steps = %ld: raise it to run "
+                    "that long",
+                    steps, s.dt, sc->max_steps);
+  }
+  long nsteps = (long)steps;
+  if (write_csv) {
+    cli_out_open(&out, csv_path);
+    csv = out.f;
+    fputs("t", csv);
+    for (int p = 0; p < sc->nprobes; p++)
+      fprintf(csv, ",%s", scene_probe_names[sc->probe[p]]);
+    fputc('\n', csv);
+  }
+  int tty = csv && isatty(STDERR_FILENO), shown = -1;
+  mfs_status st;
+  double val[SCENE_MAX_PROBES];
+  for (long k = 0;; k++) {
+    if (k % sc->every == 0 || k == nsteps) {
+      if (need_energy && (st = T->energy(in.solver, &pc.kin, &pc.pot, &pc.mod)) != MFS_OK)
+        die_run(sc, T, st, 0, s.t);
+      if (need_fields && !need_energy && T->fields && (st = T->fields(in.solver)) != MFS_OK)
+        die_run(sc, T, st, 0, s.t);
+      T->state(in.solver, &s);
+      int bad = -1;
+      for (int p = 0; p < sc->nprobes; p++) {
+        val[p] = probes[sc->probe[p]](&pc, &s);
+        if (!isfinite(val[p]) && bad < 0)
+          bad = p;
+      }
+      if (bad >= 0 && keep_failure) {
+        res.failed = 1;
+        break;
+      }
+      if (bad >= 0)
+        cli_die(1, "%s: at t = %g s: probe %s is not finite (%g); no output written", sc->path,
+                s.t, scene_probe_names[sc->probe[bad]], val[bad]);
+      if (csv) {
+        char b[40];
+        cli_fmt(b, sizeof b, s.t);
+        fputs(b, csv);
+        for (int p = 0; p < sc->nprobes; p++) {
+          cli_fmt(b, sizeof b, val[p]);
+          fputc(',', csv);
+          fputs(b, csv);
+        }
+        fputc('\n', csv);
+      }
+      if (row && row(ctx, &s, val))
+        break;
+    }
+    if (k == nsteps)
+      break;
+    if ((st = T->step(in.solver, in.scheme)) != MFS_OK) {
+      T->state(in.solver, &s);
+      if (keep_failure && st == MFS_EDOMAIN) {
+        res.failed = 1;
+        break;
+      }
+      die_run(sc, T, st, 0, s.t);
+    }
+    res.steps = k + 1;
+    if (tty)
+      progress(tty, k, nsteps, &shown);
+  }
+  T->state(in.solver, &s);
+  res.t = s.t;
+  mfs_free(ec);
+  T->free(in.solver);
+  if (csv)
+    cli_out_commit(&out);
+  return res;
+}
+
 int cmd_run(int argc, char **argv)
 {
   static run_opts o; /* static: the texts table is large */
@@ -378,96 +509,6 @@ int cmd_run(int argc, char **argv)
   for (int i = 0; i < o.sets.n; i++)
     scene_set(&sc, o.sets.v[i]);
   scene_finish(&sc);
-
-  mfs_integrator in = scene_build(&sc);
-  choose_dt(&sc, &in);
-  const mfs_integrator_type *T = in.type;
-  const mfs_source *src = &sc.spec.disc.source;
-  size_t center = T->nearest(in.solver, 0.5 * src->lx, 0.5 * sc.ly, sc.component);
-  if (center == (size_t)-1) /* the centre particle is never on the boundary (nodes >= 3) */
-    cli_die(1, "%s: no free particle at the centre of the box", sc.path);
-  initial_state(&sc, &in, center);
-
-  mfs_state s;
-  T->state(in.solver, &s);
-  probe_ctx pc = {.sc = &sc, .in = &in, .center = center};
-  int need_energy = 0, need_fields = 0, need_mode = 0;
-  for (int p = 0; p < sc.nprobes; p++) {
-    int q = sc.probe[p];
-    need_energy |= q == PROBE_KINETIC || q == PROBE_POTENTIAL || q == PROBE_TOTAL ||
-                   q == PROBE_MODIFIED;
-    need_fields |= q == PROBE_SIGMA_END || q == PROBE_SIGMA_CENTER;
-    need_mode |= q == PROBE_MODE_AMP;
-  }
-  if (s.nq > 0) {
-    pc.qend = nearest_point(s.xq, s.nq, src->lx);
-    pc.qcen = nearest_point(s.xq, s.nq, 0.5 * src->lx);
-  }
-  double *ec = NULL;
-  if (need_mode && s.dim == 2) {
-    ec = mfs_malloc(2 * s.n * sizeof *ec);
-    if (!ec)
-      cli_die(1, "out of memory");
-    double kx = 2.0 * M_PI * sc.mode_x / src->lx, ky = 2.0 * M_PI * sc.mode_y / sc.ly;
-    for (size_t i = 0; i < s.n; i++) {
-      double ph = kx * s.X[i] + ky * s.Y[i];
-      int on = s.comp[i] == sc.component;
-      ec[i] = on ? cos(ph) : 0.0;
-      ec[s.n + i] = on ? -sin(ph) : 0.0;
-      pc.nmode += (size_t)on;
-    }
-    pc.ec = ec;
-    pc.es = ec + s.n;
-  }
-
-  double steps = ceil(sc.end / s.dt * (1.0 - 1e-12));
-  if (!(steps <= (double)sc.max_steps)) {
-    T->free(in.solver);
-    scene_key_error(&sc, "time", "end",
-                    "%.4g steps of %.4g s; more than [time] max_steps = %ld: raise it to run "
-                    "that long",
-                    steps, s.dt, sc.max_steps);
-  }
-  long nsteps = (long)steps;
-  cli_out out;
-  cli_out_open(&out, o.out);
-  fputs("t", out.f);
-  for (int p = 0; p < sc.nprobes; p++)
-    fprintf(out.f, ",%s", scene_probe_names[sc.probe[p]]);
-  fputc('\n', out.f);
-  int tty = isatty(STDERR_FILENO), shown = -1;
-  mfs_status st;
-  for (long k = 0;; k++) {
-    if (k % sc.every == 0 || k == nsteps) {
-      if (need_energy && (st = T->energy(in.solver, &pc.kin, &pc.pot, &pc.mod)) != MFS_OK)
-        die_run(&sc, T, st, 0, s.t);
-      if (need_fields && !need_energy && T->fields && (st = T->fields(in.solver)) != MFS_OK)
-        die_run(&sc, T, st, 0, s.t);
-      T->state(in.solver, &s);
-      char b[40];
-      cli_fmt(b, sizeof b, s.t);
-      fputs(b, out.f);
-      for (int p = 0; p < sc.nprobes; p++) {
-        double val = probes[sc.probe[p]](&pc, &s);
-        if (!isfinite(val))
-          cli_die(1, "%s: at t = %g s: probe %s is not finite (%g); no output written", sc.path,
-                  s.t, scene_probe_names[sc.probe[p]], val);
-        cli_fmt(b, sizeof b, val);
-        fputc(',', out.f);
-        fputs(b, out.f);
-      }
-      fputc('\n', out.f);
-    }
-    if (k == nsteps)
-      break;
-    if ((st = T->step(in.solver, in.scheme)) != MFS_OK) {
-      T->state(in.solver, &s);
-      die_run(&sc, T, st, 0, s.t);
-    }
-    progress(tty, k, nsteps, &shown);
-  }
-  mfs_free(ec);
-  T->free(in.solver);
-  cli_out_commit(&out);
+  scene_run(&sc, 1, o.out, NULL, NULL, 0);
   return 0;
 }

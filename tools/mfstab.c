@@ -6,6 +6,7 @@
 
 #include "cli.h"
 #include "commands.h"
+#include "par.h"
 
 #ifndef MFSTAB_VERSION
 #define MFSTAB_VERSION "unknown"
@@ -145,5 +146,6 @@ int main(int argc, char **argv)
   if (k < 0)
     unknown(argv[1]);
   cli_command = cmds[k].name;
+  par_init(&argc, &argv, cli_command); /* MPI, when launched by mpirun (tools/par.h) */
   return cmds[k].run(argc - 1, argv + 1);
 }

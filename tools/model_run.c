@@ -62,6 +62,10 @@ void rules_row(FILE *f, const double *dt, double safe_below, double unsafe_above
 
 void model_run(const model_cmd *c, const run_opts *o, run_result *r)
 {
+  if (o->distributed) {
+    model_prun(c, o, r);
+    return;
+  }
   memset(r, 0, sizeof *r);
   const mfs_model_spec *s = &c->s;
   const mfs_disc *d = &s->disc;
@@ -77,6 +81,7 @@ void model_run(const model_cmd *c, const run_opts *o, run_result *r)
   }
   r->m = m;
   r->particles = m->p->n;
+  r->dofs = m->n;
   st = mfs_bound_of_model(m, &r->br);
   if (st != MFS_OK)
     cli_die(1, "element bound: %s", mfs_strerror(st));
@@ -93,6 +98,8 @@ void model_run(const model_cmd *c, const run_opts *o, run_result *r)
     r->nonpositive = r->g.nonpositive;
     r->min_mass = r->g.min_mass;
     r->min_mass_particle = r->g.argmin_mass / (size_t)m->ndof;
+    r->min_mass_x[0] = m->p->x[r->min_mass_particle * (size_t)m->p->dim];
+    r->min_mass_x[1] = m->p->dim == 2 ? m->p->x[r->min_mass_particle * 2 + 1] : NAN;
     r->masses_ok = r->nonpositive == 0;
   } else {
     r->g = (mfs_gershgorin_result){.lambda = NAN};

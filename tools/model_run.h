@@ -15,6 +15,7 @@ typedef struct {
   double arpack_tol;
   int certify;          /* dt_certified */
   int keep;             /* keep the model and the modes (write-modes, check) */
+  int distributed;      /* over the MPI ranks (tools/par.h, model_prun.c): no model kept */
 } run_opts;
 
 #define RUN_MAX_RULES 8
@@ -23,10 +24,12 @@ typedef struct {
   mfs_model *m;              /* kept with run_opts.keep, else NULL */
   eigs_derived dv;
   size_t particles;
+  size_t dofs;               /* free degrees of freedom */
   /* lumped masses (consistent: all reported positive) */
   size_t nonpositive;        /* free dofs with m_i <= 0 */
   double min_mass;           /* NAN with a consistent mass */
   size_t min_mass_particle;
+  double min_mass_x[2];      /* its coordinates (y NAN in 1D) */
   int masses_ok;
   mfs_bound_result br;
   int bound_valid;
@@ -49,6 +52,20 @@ typedef struct {
  * numerical failure, with its exit code). */
 void model_run(const model_cmd *c, const run_opts *o, run_result *r);
 void run_result_free(run_result *r);
+
+/* The same analyses over the MPI ranks (tools/model_prun.c, lib/analysis/
+ * mfs_peigs.h): the element bound, the lumped masses, the Gershgorin bound
+ * and lambda_max (PARPACK); no model is kept (r->m NULL), zero modes and
+ * certification are not computed.  Collective: every rank calls it. */
+void model_prun(const model_cmd *c, const run_opts *o, run_result *r);
+
+/* The bounds of `mfstab bound` over the MPI ranks: the element bound (on a
+ * lattice the streaming bound, as one process computes it), the Gershgorin
+ * bound streamed from each rank's rows (lumped mass; gr->lambda NAN
+ * otherwise), the coordinates gx of its row's particle, the particle *mI of
+ * the smallest mass, the numbers of particles and quadrature points. */
+void bound_prun(const model_cmd *c, mfs_bound_result *br, mfs_gershgorin_result *gr, double *gx,
+                size_t *mI, size_t *np, size_t *npts);
 
 /* The peers' step rules for the model of c (the convention's peer with the
  * user's h and --rule-factor; every other peer with its default kernel's h =

@@ -4,11 +4,12 @@
  * the output directory (the same code path as the user command, run in
  * process, its CSV read back).
  *
- * Coarse levels, so that reproduce stays fast (about 2 s): the beam at dx =
- * 1/2, 1/4, 1/8 (51 to 585 nodes), the plate at h = 1.25, 0.625, 0.3125 (23
- * to 287 nodes).  The studies at the paper's levels (dx down to 1/64, h down
- * to 1/16) are analysis/static_studies.sh's (notebooks-data/static_*.csv);
- * docs/errata.md E14 compares both with the print.
+ * Coarse levels, so that reproduce stays fast (about 1 s): the beam at dx =
+ * 1/2, 1/4, 1/8 (51 to 585 nodes), the plate at h = 5/3, 5/6, 5/12 (4, 7, 13
+ * nodes along its edge; 165 nodes at the finest).  The studies at the
+ * paper's levels (dx down to 1/64, h down to 1/16) are
+ * analysis/static_studies.sh's (notebooks-data/static_*.csv); docs/errata.md
+ * E14 compares both with the print.
  *
  * The extracted Table III lost its decimals: only "NC" and the integer parts
  * are legible.  Status: match when our rate has the legible integer part (NC:
@@ -22,7 +23,7 @@
 
 #include "cli.h"
 #include "commands.h"
-#include "repro_static.h"
+#include "repro.h"
 
 /* The paper's Table III as legible in the extraction: "NC", or the integer
  * part of the rate ("1" for the printed "1.?"). */
@@ -36,7 +37,7 @@ static const struct {
 enum { NMETHODS = sizeof table3 / sizeof table3[0] };
 
 /* Run mfstab static with the arguments (NULL-terminated) into dir/file. */
-static void run_static(const char *outdir, const char *file, ...)
+static void run_static(const char *file, ...)
 {
   char *argv[40], path[1024];
   int argc = 0;
@@ -46,7 +47,7 @@ static void run_static(const char *outdir, const char *file, ...)
   for (const char *a; (a = va_arg(ap, const char *)) != NULL && argc < 36;)
     argv[argc++] = (char *)a;
   va_end(ap);
-  snprintf(path, sizeof path, "%s/%s", outdir, file);
+  snprintf(path, sizeof path, "%s", repro_path(file));
   argv[argc++] = "-o";
   argv[argc++] = path;
   argv[argc] = NULL;
@@ -57,10 +58,10 @@ static void run_static(const char *outdir, const char *file, ...)
 }
 
 /* The rates (rate_energy, rate_L2) of each method of dir/file, by method. */
-static void read_rates(const char *outdir, const char *file, double rates[NMETHODS][2])
+static void read_rates(const char *file, double rates[NMETHODS][2])
 {
   char path[1024], line[4096];
-  snprintf(path, sizeof path, "%s/%s", outdir, file);
+  snprintf(path, sizeof path, "%s", repro_path(file));
   FILE *f = fopen(path, "r");
   if (!f || !fgets(line, sizeof line, f))
     cli_die(1, "Table III: cannot read %s", path);
@@ -102,30 +103,28 @@ static const char *status_of(const char *paper, double rate, int efg_energy)
   if (efg_energy && !(rate >= 0.9))
     return "differs";
   if (strcmp(paper, "NC") == 0)
-    return rate < 0.5 ? "match" : "errata";
+    return rate < 0.5 ? "match" : "errata E14";
   double k = strtod(paper, NULL);
-  return rate >= k && rate < k + 1.0 ? "match" : "errata";
+  return rate >= k && rate < k + 1.0 ? "match" : "errata E14";
 }
 
-void repro_static_rows(const char *outdir,
-                       void (*row)(const char *artifact, const char *paper, double ours,
-                                   const char *status))
+void repro_static_rows(void)
 {
-  run_static(outdir, "static_table3_beam.csv", "--method", "all", "--refine", "3", "--nodes", "17,3",
-             NULL);
-  run_static(outdir, "static_table3_plate.csv", "--problem", "plate-hole", "--method", "all",
-             "--refine", "3", "--nodes", "5", NULL);
+  run_static("static_table3_beam.csv", "--method", "all", "--refine", "3", "--nodes", "17,3", NULL);
+  run_static("static_table3_plate.csv", "--problem", "plate-hole", "--method", "all", "--refine",
+             "3", "--nodes", "4", NULL);
   double beam[NMETHODS][2], plate[NMETHODS][2];
-  read_rates(outdir, "static_table3_beam.csv", beam);
-  read_rates(outdir, "static_table3_plate.csv", plate);
+  read_rates("static_table3_beam.csv", beam);
+  read_rates("static_table3_plate.csv", plate);
   static const char *const col[4] = {"beam energy", "beam L2", "plate energy", "plate L2"};
   for (int c = 0; c < 4; c++)
     for (int k = 0; k < NMETHODS; k++) {
       double r = c < 2 ? beam[k][c] : plate[k][c - 2];
       char a[96], p[16];
-      snprintf(a, sizeof a, "Table III %s %s rate", col[c], table3[k].method);
+      snprintf(a, sizeof a, "004 Table III %s %s rate", col[c], table3[k].method);
       const char *cell = table3[k].cell[c];
       snprintf(p, sizeof p, strcmp(cell, "NC") == 0 ? "%s" : "%s.?", cell);
-      row(a, p, r, status_of(cell, r, c % 2 == 0 && strcmp(table3[k].method, "efg") == 0));
+      repro_row(a, p, r, status_of(cell, r, c % 2 == 0 && strcmp(table3[k].method, "efg") == 0),
+                c < 2 ? "static_table3_beam.csv" : "static_table3_plate.csv");
     }
 }

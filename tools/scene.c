@@ -495,7 +495,7 @@ static void defaults(scene *sc, const char *path)
   sc->scheme = MFS_SCHEME_LEAPFROG;
   sc->every = 1;
   sc->max_steps = 100000000; /* 10^8: a limit on the work, raised by [time] max_steps */
-  sc->max_entries = CLI_MAX_ENTRIES; /* the plan's size, raised by [model] max_entries */
+  sc->max_entries = 0.0; /* the default limit (cli_entries_limit), or [model] max_entries */
   sc->mode = 1.0;
   sc->pulse_alpha = 1.0;
   sc->yield_stress = INFINITY;
@@ -507,26 +507,42 @@ static void defaults(scene *sc, const char *path)
 
 static void close_file(void *f) { fclose(f); }
 
+/* Parse the open stream c->f into c->sc (closes it). */
+static void parse_stream(parse_ctx *c, const char *path)
+{
+  cli_on_die(close_file, c->f);
+  int r = ini_parse_stream(reader, c, handler, c);
+  cli_on_die_pop();
+  fclose(c->f);
+  if (r > 0)
+    cli_die(2, "%s:%d: syntax error; expected [section] or key = value", path, r);
+  if (r < 0)
+    cli_die(2, "%s: cannot read the scene file", path);
+}
+
+void scene_load_text(scene *sc, const char *name, const char *text)
+{
+  defaults(sc, name);
+  parse_ctx c = {sc, 0, fmemopen((void *)text, strlen(text), "r")};
+  if (!c.f)
+    cli_die(1, "%s: cannot read the built-in scene (%s)", name, strerror(errno));
+  parse_stream(&c, name);
+}
+
 void scene_load(scene *sc, const char *path)
 {
   defaults(sc, path);
   parse_ctx c = {sc, 0, fopen(path, "r")};
   if (!c.f)
     cli_die(2, "%s: cannot open the scene file (%s)", path, strerror(errno));
-  cli_on_die(close_file, c.f);
   struct stat st;
   if (fstat(fileno(c.f), &st) == 0 && !S_ISREG(st.st_mode) && !S_ISFIFO(st.st_mode) &&
       !S_ISCHR(st.st_mode)) {
+    fclose(c.f);
     cli_die(2, "%s: %s; expected a scene file", path,
             S_ISDIR(st.st_mode) ? "is a directory" : "not a regular file");
   }
-  int r = ini_parse_stream(reader, &c, handler, &c);
-  cli_on_die_pop();
-  fclose(c.f);
-  if (r > 0)
-    cli_die(2, "%s:%d: syntax error; expected [section] or key = value", path, r);
-  if (r < 0)
-    cli_die(2, "%s: cannot read the scene file", path);
+  parse_stream(&c, path);
 }
 
 void scene_set(scene *sc, const char *assignment)

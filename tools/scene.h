@@ -95,6 +95,35 @@ mfs_model_spec scene_model_spec(const scene *sc);
 mfs_integrator scene_build(scene *sc);
 
 void scene_load(scene *sc, const char *path);
+/* Read a scene from the text of a file (NUL-terminated, not empty); name
+ * stands for the file in messages (exit 2 on any error). */
+void scene_load_text(scene *sc, const char *name, const char *text);
+/* The scene files of analysis/scenes/, built into the program
+ * (tools/embed_scenes.py writes scenes_embedded.c at build time): name
+ * ("rod-tensile.ini") and text.  NULL when there is no such scene. */
+const char *scene_builtin(const char *name);
+
+/* An observer of scene_run: called at every output row with the state and
+ * the values of the probes of [output] probes (in their order); a nonzero
+ * return stops the run there. */
+typedef int (*scene_row_fn)(void *ctx, const mfs_state *s, const double *probe_values);
+
+/* The outcome of scene_run. */
+typedef struct {
+  long steps;       /* steps taken */
+  double t;         /* time reached (s) */
+  int failed;       /* 1: a step or a probe turned non-finite at time t (only with keep_failure) */
+} scene_result;
+
+/* Run a finished scene: build the solver, choose the step, set the initial
+ * state, step to [time] end; each output row ([output] every) goes to the
+ * CSV file csv_path (standard output when NULL; only if write_csv: the
+ * header first) and to row (when not NULL).  A numerical
+ * failure dies with one line (exit 1) unless keep_failure, which ends the
+ * run and reports it in the result.  Defined in cmd_run.c. */
+scene_result scene_run(scene *sc, int write_csv, const char *csv_path, scene_row_fn row, void *ctx,
+                        int keep_failure);
+
 /* Apply "section.key=value" from the command line (exit 2 on error). */
 void scene_set(scene *sc, const char *assignment);
 /* Check required keys and cross-key constraints (exit 2). */

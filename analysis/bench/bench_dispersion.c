@@ -1,19 +1,46 @@
-/* Benchmark of `mfstab dispersion` (issue: von Neumann dispersion).
- *   1D family: 5 stresses x 2 dilations x 1000 kappa, Eulerian nodal, quartic MLS
- *   2D family: 8 angles x 400 kappa, stress-tri, cubic MLS, D = 2
- * Time of the evaluation after the plan is built (best of several repeats),
- * and of the plan, against a straightforward reference measured in the same
- * run: the closed form (eq. 74) evaluated naively per point, recomputing the
- * MLS shape functions phi'(j dx), phi''(j dx) at every point (1D), and eq.
- * 118 with the stencil K_jk recomputed at every point (2D).
- * CSV on stdout: family,phase,points,seconds,seconds_per_point,ratio,error,peak_rss_mb */
+/* Benchmark of the dispersion analysis after the plan (issue 14 item 3; the
+ * first version: the von Neumann dispersion issue).  Families:
+ *   1d           quartic MLS, Eulerian nodal (paper 003 eq. 74), D = 1.5, 2.5,
+ *                5 stresses x 1000 wave numbers on [0, 1]: 10000 points, 1 branch
+ *   2d-antiplane cubic MLS, D = 2, stress-tri, square lattice, 8 angles on
+ *                [0, 45] deg x 400 wave numbers on [0, kappa_max]: 3200 points, 1 branch
+ *   2d-plane     the same in plane strain (nu = 0.25): 2 branches (2 x 2 closed form)
+ *   2d-star      anti-plane, stress-star (two particles per cell): 2 branches
+ *   2d-star-plane plane strain, stress-star: 4 branches (LAPACKE zhegv)
+ * Phases, each timed over --repeat runs (min, median, max of the wall time):
+ *   direct        the symbols summed term by term, a sincos per lattice offset
+ *                 (mfs_disp_symbols, the evaluator before issue 14) and the same
+ *                 eigen solve (closed forms, zhegv)
+ *   point         mfs_disp_omega2, one call per point
+ *   ray           mfs_disp_ray, one call per (dilation, stress, angle)
+ *   ray-stresses  mfs_disp_ray, one call per (dilation, angle) for all stresses
+ *   threads-1, threads-2   the ray evaluation of a 20 x larger family in parallel
+ *                 over chunks of 256 wave numbers (OpenMP, as mfstab dispersion),
+ *                 with 1 and 2 threads; identical says the two gave the same bits
+ * error: the largest |omega^2 - reference| over the family relative to the
+ * largest |omega^2| (1d: the closed form eq. 74 of lib/analysis/mfs_closed.c;
+ * 2d: the direct symbols); ratio: the direct phase's median over this one's.
+ * CSV: family,phase,points,branches,threads,repeats,seconds_min,seconds_median,
+ *   seconds_max,ns_per_point,ns_per_point_branch,ratio,identical,error,peak_rss_mb,load1
+ * (ns_per_point from the median).  With --numpy-data DIR the coefficients of the
+ * NumPy comparison (bench_dispersion_numpy.py) and this run's values go to DIR.
+ * usage: bench_dispersion [--repeat R] [--family NAME] [--no-threads] [--numpy-data DIR] [-o FILE]
+ * Not a test: nothing here asserts a time. */
 #include <complex.h>
 #undef I
+#include <lapacke.h>
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
+#include <string.h>
 #include <sys/resource.h>
 #include <time.h>
+#ifdef _OPENMP
+#include <omp.h>
+#define MFS_OMP(x) _Pragma(x)
+#else
+#define MFS_OMP(x)
+#endif
 
 #include "mfstab.h"
 
@@ -31,7 +58,170 @@ static double rss_mb(void)
   return u.ru_maxrss / 1024.0;
 }
 
-/* phi', phi'' of the interior MLS function of particle 0 at x (dx = 1) */
+static double load1(void)
+{
+  double l = NAN;
+  FILE *f = fopen("/proc/loadavg", "r");
+  if (f) {
+    if (fscanf(f, "%lf", &l) != 1)
+      l = NAN;
+    fclose(f);
+  }
+  return l;
+}
+
+static int cmp_d(const void *a, const void *b)
+{
+  double x = *(const double *)a, y = *(const double *)b;
+  return (x > y) - (x < y);
+}
+
+/* A family: plans (one per dilation), stresses, rays. */
+typedef struct {
+  const char *name;
+  int nplan, nsig, nth, nk;
+  mfs_disp_plan *pl[2];
+  double sig[5], th[8], *kap; /* kap[t nk + i] */
+  int nb;
+} family;
+
+static double *kappas(const family *f, int nk)
+{
+  double *k = malloc((size_t)f->nth * nk * sizeof *k);
+  for (int t = 0; t < f->nth; t++) {
+    double km = f->pl[0] ? mfs_disp_kappa_max(f->pl[0], f->th[t]) : 1.0;
+    for (int i = 0; i < nk; i++)
+      k[t * nk + i] = km * i / (nk - 1);
+  }
+  return k;
+}
+
+static mfs_disp_plan *plan(mfs_disp_spec s)
+{
+  mfs_status st;
+  mfs_disp_plan *p = mfs_disp_plan_alloc(&s, &st);
+  if (!p) {
+    fprintf(stderr, "bench_dispersion: plan: %s\n", mfs_strerror(st));
+    exit(1);
+  }
+  return p;
+}
+
+static family make(const char *name)
+{
+  family f = {.name = name, .nplan = 1, .nsig = 1, .nth = 8, .nk = 400};
+  if (!strcmp(name, "1d")) {
+    const double sig[5] = {-0.5, 0.0, 0.25, 0.5, 1.0}, dil[2] = {1.5, 2.5};
+    f.nplan = 2, f.nsig = 5, f.nth = 1, f.nk = 1000;
+    memcpy(f.sig, sig, sizeof sig);
+    for (int d = 0; d < 2; d++) {
+      mfs_disp_spec s = {.disc = mfs_disc_default(), .stretch = 1.0};
+      s.disc.kernel = &mfs_kernel_quartic;
+      s.disc.dilation = dil[d];
+      s.disc.frame = MFS_FRAME_EULERIAN;
+      f.pl[d] = plan(s);
+    }
+  } else {
+    mfs_disc d = mfs_disc_default();
+    d.dim = 2;
+    d.source = (mfs_source){.lattice = MFS_LATTICE_SQUARE, .spacing = 1.0, .gamma = 1.0};
+    d.quadrature = strstr(name, "star") ? &mfs_quad_stress_star : &mfs_quad_stress_tri;
+    if (!strcmp(name + strlen(name) - 6, "-plane"))
+      d.material.physics = MFS_PHYS_PLANE_STRAIN;
+    f.pl[0] = plan((mfs_disp_spec){.disc = d, .stretch = 1.0});
+    for (int t = 0; t < 8; t++)
+      f.th[t] = t * M_PI / 4 / 7;
+  }
+  f.nb = mfs_disp_branches(f.pl[0]);
+  f.kap = kappas(&f, f.nk);
+  return f;
+}
+
+static void unmake(family *f)
+{
+  for (int d = 0; d < f->nplan; d++)
+    mfs_disp_plan_free(f->pl[d]);
+  free(f->kap);
+}
+
+static int cmp_re(const void *a, const void *b)
+{
+  double x = creal(*(const double complex *)a), y = creal(*(const double complex *)b);
+  return (x > y) - (x < y);
+}
+
+/* The evaluator before issue 14: the direct symbols and the eigen solve it
+ * used (one branch K / M, the lumped 2 x 2 in closed form, else zhegv or zggev). */
+static void direct(const mfs_disp_plan *pl, double sbar, double kap, double th, double complex *w)
+{
+  const int n = mfs_disp_branches(pl), herm = mfs_disp_plan_spec(pl)->disc.frame ==
+                                                     MFS_FRAME_LAGRANGIAN;
+  double k[2] = {kap * M_PI * cos(th), kap * M_PI * sin(th)};
+  if (mfs_disp_plan_spec(pl)->disc.dim == 1)
+    k[0] = kap * M_PI, k[1] = 0.0;
+  double complex K[16], M[16];
+  mfs_disp_symbols(pl, sbar, k, K, M);
+  if (n == 1) {
+    w[0] = herm ? creal(K[0]) / creal(M[0]) : K[0] / M[0];
+  } else if (n == 2 && M[1] == 0.0 && M[2] == 0.0 && M[0] == M[3]) {
+    double a = creal(K[0]) / creal(M[0]), d = creal(K[3]) / creal(M[0]);
+    double b = cabs(K[1]) / creal(M[0]), r = hypot(0.5 * (a - d), b);
+    w[0] = 0.5 * (a + d) - r;
+    w[1] = 0.5 * (a + d) + r;
+  } else {
+    double complex work[64];
+    double rwork[32], wr[4];
+    LAPACKE_zhegv_work(LAPACK_COL_MAJOR, 1, 'N', 'L', n, K, n, M, n, wr, work, 64, rwork);
+    for (int i = 0; i < n; i++)
+      w[i] = wr[i];
+    qsort(w, (size_t)n, sizeof *w, cmp_re);
+  }
+}
+
+enum { CHUNK = 256 };
+
+/* One run of a phase over the family into w[((d nsig + s) nth + t) nk + i] nb. */
+static void run_phase(const family *f, const char *phase, int nk, const double *kap,
+                      double complex *w)
+{
+  const size_t nb = (size_t)f->nb, ray = (size_t)nk * nb;
+  for (int d = 0; d < f->nplan; d++) {
+    const mfs_disp_plan *pl = f->pl[d];
+    double complex *wd = w + (size_t)d * f->nsig * f->nth * ray;
+    if (!strcmp(phase, "threads")) { /* as mfstab dispersion: chunks of every angle */
+      const long nch = (nk + CHUNK - 1) / CHUNK, ntask = f->nth * nch;
+      MFS_OMP("omp parallel for schedule(dynamic)")
+      for (long task = 0; task < ntask; task++) {
+        int t = (int)(task / nch), c0 = (int)(task % nch) * CHUNK;
+        int len = nk - c0 < CHUNK ? nk - c0 : CHUNK;
+        mfs_disp_ray(pl, f->sig, (size_t)f->nsig, f->th[t], kap + t * nk + c0, (size_t)len,
+                     wd + (t * (size_t)nk + c0) * nb, f->nth * ray);
+      }
+      continue;
+    }
+    for (int t = 0; t < f->nth; t++) {
+      const double *kt = kap + (size_t)t * nk;
+      if (!strcmp(phase, "ray-stresses")) {
+        mfs_disp_ray(pl, f->sig, (size_t)f->nsig, f->th[t], kt, (size_t)nk, wd + t * ray,
+                     f->nth * ray);
+        continue;
+      }
+      for (int s = 0; s < f->nsig; s++) {
+        double complex *ws = wd + ((size_t)s * f->nth + t) * ray;
+        if (!strcmp(phase, "ray"))
+          mfs_disp_ray(pl, f->sig + s, 1, f->th[t], kt, (size_t)nk, ws, 0);
+        else if (!strcmp(phase, "point"))
+          for (int i = 0; i < nk; i++)
+            mfs_disp_omega2(pl, f->sig[s], kt[i], f->th[t], ws + i * nb);
+        else
+          for (int i = 0; i < nk; i++)
+            direct(pl, f->sig[s], kt[i], f->th[t], ws + i * nb);
+      }
+    }
+  }
+}
+
+/* phi', phi'' of the interior MLS function of particle 0 at x (dx = 1), for eq. 74 */
 static void mls_at(double D, double x, double *d1, double *d2)
 {
   mfs_shape_ctx c = {&mfs_kernel_quartic, 1, D, 0.0};
@@ -48,124 +238,191 @@ static void mls_at(double D, double x, double *d1, double *d2)
   *d2 = self0 >= 0 ? out[self0 * 3 + 2] : 0.0;
 }
 
-/* eq. 74 at one point, everything recomputed */
-static double naive74(double D, double sbar, double kap)
+/* The error against the reference: the closed form (1d), the direct symbols (2d). */
+static double family_error(const family *f, const double complex *w)
 {
-  double S = 0.0, P = 0.0, k = kap * M_PI;
-  int J = (int)ceil(D);
-  for (int j = -J; j <= J; j++) {
-    double d1, d2;
-    mls_at(D, j, &d1, &d2);
-    S += d1 * sin(k * j);
-    P += d2 * (1.0 - cos(k * j));
-  }
-  return (1.0 + sbar) * S * S - sbar * (P - S * S);
+  const size_t nb = (size_t)f->nb, ray = (size_t)f->nk * nb;
+  double scale = 0.0, err = 0.0;
+  for (int d = 0; d < f->nplan; d++)
+    for (int s = 0; s < f->nsig; s++)
+      for (int t = 0; t < f->nth; t++) {
+        const double complex *ws = w + (((size_t)d * f->nsig + s) * f->nth + t) * ray;
+        const double *kt = f->kap + (size_t)t * f->nk;
+        double *ref = malloc(ray * sizeof *ref);
+        if (!strcmp(f->name, "1d")) {
+          mfs_cf_spec cs = {.disc = mfs_disp_plan_spec(f->pl[d])->disc, .sbar = f->sig[s]};
+          mfs_status st;
+          mfs_cf_plan *cf = mfs_cf_plan_alloc(&cs, &st);
+          mfs_cf_omega2(cf, MFS_CF_EULER_NODAL, (size_t)f->nk, kt, ref);
+          mfs_cf_plan_free(cf);
+        } else {
+          for (int i = 0; i < f->nk; i++) {
+            double complex r[4];
+            direct(f->pl[d], f->sig[s], kt[i], f->th[t], r);
+            for (size_t b = 0; b < nb; b++)
+              ref[i * nb + b] = creal(r[b]);
+          }
+        }
+        for (size_t i = 0; i < ray; i++) {
+          scale = fmax(scale, fabs(ref[i]));
+          err = fmax(err, fabs(creal(ws[i]) - ref[i]));
+        }
+        free(ref);
+      }
+  return err / fmax(scale, 1e-300);
 }
 
-int main(void)
+/* The coefficients and values the NumPy comparison reads. */
+static void numpy_data(const family *f, const char *dir, const double complex *w)
 {
-  const double sig[5] = {-0.5, 0.0, 0.25, 0.5, 1.0}, dil[2] = {1.5, 2.5};
-  const int nk = 1000, reps = 20;
-  printf("family,phase,points,seconds,seconds_per_point,ratio,error,peak_rss_mb\n");
-  /* 1D */
-  double t0 = now();
-  mfs_disp_plan *pl[2];
-  for (int d = 0; d < 2; d++) {
-    mfs_disp_spec s = {.disc = mfs_disc_default(), .stretch = 1.0};
-    s.disc.kernel = &mfs_kernel_quartic;
-    s.disc.dilation = dil[d];
-    s.disc.frame = MFS_FRAME_EULERIAN;
-    mfs_status st;
-    pl[d] = mfs_disp_plan_alloc(&s, &st);
-    if (!pl[d])
-      return 1;
+  char path[4096];
+  snprintf(path, sizeof path, "%s/%s_coef.csv", dir, f->name);
+  FILE *c = fopen(path, "w");
+  snprintf(path, sizeof path, "%s/%s_values.csv", dir, f->name);
+  FILE *v = fopen(path, "w");
+  if (!c || !v) {
+    fprintf(stderr, "bench_dispersion: cannot write into %s\n", dir);
+    exit(1);
   }
-  double tplan = now() - t0, best = INFINITY, sink = 0.0;
-  static double out[2][5][1000];
-  for (int r = 0; r < reps; r++) {
-    t0 = now();
-    for (int d = 0; d < 2; d++)
-      for (int s = 0; s < 5; s++)
-        for (int i = 0; i < nk; i++) {
-          double complex w;
-          mfs_disp_omega2(pl[d], sig[s], (double)i / (nk - 1), 0.0, &w);
-          out[d][s][i] = creal(w);
-        }
-    double t = now() - t0;
-    best = t < best ? t : best;
-  }
-  int npts = 2 * 5 * nk;
-  t0 = now();
-  double err = 0.0;
-  for (int d = 0; d < 2; d++)
-    for (int s = 0; s < 5; s++)
-      for (int i = 0; i < nk; i++) {
-        double v = naive74(dil[d], sig[s], (double)i / (nk - 1));
-        err = fmax(err, fabs(v - out[d][s][i]));
-        sink += v;
-      }
-  double tnaive = now() - t0;
-  printf("1d,plan,%d,%.6g,,,,%.1f\n", npts, tplan, rss_mb());
-  printf("1d,evaluate,%d,%.6g,%.3g,,,%.1f\n", npts, best, best / npts, rss_mb());
-  printf("1d,naive_closed_form,%d,%.6g,%.3g,%.1f,%.3g,%.1f\n", npts, tnaive, tnaive / npts,
-         tnaive / best, err, rss_mb());
-  for (int d = 0; d < 2; d++)
-    mfs_disp_plan_free(pl[d]);
-
-  /* 2D */
-  const int nth = 8, nk2 = 400;
-  t0 = now();
-  mfs_disc d2 = mfs_disc_default();
-  d2.dim = 2;
-  d2.source = (mfs_source){.lattice = MFS_LATTICE_SQUARE, .spacing = 1.0, .gamma = 1.0};
-  d2.quadrature = &mfs_quad_stress_tri;
-  mfs_disp_spec s2 = {.disc = d2, .stretch = 1.0};
-  mfs_status st;
-  mfs_disp_plan *p2 = mfs_disp_plan_alloc(&s2, &st);
-  if (!p2)
-    return 1;
-  tplan = now() - t0;
-  static double o2[8][400];
-  best = INFINITY;
-  for (int r = 0; r < reps; r++) {
-    t0 = now();
-    for (int t = 0; t < nth; t++) {
-      double th = t * M_PI / 4 / (nth - 1), km = mfs_disp_kappa_max(p2, th);
-      for (int i = 0; i < nk2; i++) {
-        double complex w;
-        mfs_disp_omega2(p2, 0.0, km * i / (nk2 - 1), th, &w);
-        o2[t][i] = creal(w);
+  if (!strcmp(f->name, "1d")) { /* eq. 74: phi'(j), phi''(j) of each dilation */
+    fprintf(c, "dilation,j,dphi,d2phi\n");
+    for (int d = 0; d < f->nplan; d++) {
+      double D = mfs_disp_plan_spec(f->pl[d])->disc.dilation;
+      int J = (int)ceil(D);
+      for (int j = -J; j <= J; j++) {
+        double d1, d2;
+        mls_at(D, j, &d1, &d2);
+        fprintf(c, "%.17g,%d,%.17g,%.17g\n", D, j, d1, d2);
       }
     }
-    double t = now() - t0;
-    best = t < best ? t : best;
-  }
-  npts = nth * nk2;
-  /* reference: eq. 118/119 with the stencil recomputed per point (a sample, scaled) */
-  int sample = 64;
-  t0 = now();
-  err = 0.0;
-  for (int n = 0; n < sample; n++) {
-    int t = n % nth, i = (n * 37) % nk2;
-    double th = t * M_PI / 4 / (nth - 1), km = mfs_disp_kappa_max(p2, th), kap = km * i / (nk2 - 1);
+  } else { /* eq. 118: the stencil K_jk and M_00 */
     mfs_stencil_entry *e;
     size_t ne, bad;
-    mfs_stencil(&d2, &e, &ne, &bad);
-    double num = 0.0, m = 0.0;
-    for (size_t q = 0; q < ne; q++) {
-      double ph = kap * M_PI * (e[q].j * cos(th) + e[q].k * sin(th));
-      num += e[q].K * cos(ph);
-      m += e[q].M * cos(ph);
-    }
-    free(e);
-    err = fmax(err, fabs(num / m - o2[t][i]));
+    mfs_stencil(&mfs_disp_plan_spec(f->pl[0])->disc, &e, &ne, &bad);
+    fprintf(c, "j,k,K,M\n");
+    for (size_t q = 0; q < ne; q++)
+      fprintf(c, "%d,%d,%.17g,%.17g\n", e[q].j, e[q].k, e[q].K, e[q].M);
+    mfs_free(e);
   }
-  tnaive = (now() - t0) / sample * npts;
-  printf("2d,plan,%d,%.6g,,,,%.1f\n", npts, tplan, rss_mb());
-  printf("2d,evaluate,%d,%.6g,%.3g,,,%.1f\n", npts, best, best / npts, rss_mb());
-  printf("2d,naive_stencil_per_point,%d,%.6g,%.3g,%.1f,%.3g,%.1f\n", npts, tnaive, tnaive / npts,
-         tnaive / best, err, rss_mb());
-  mfs_disp_plan_free(p2);
-  fprintf(stderr, "checksum %g\n", sink);
+  fprintf(v, "dilation,sigma,theta,kappa,omega2\n");
+  for (int d = 0; d < f->nplan; d++)
+    for (int s = 0; s < f->nsig; s++)
+      for (int t = 0; t < f->nth; t++)
+        for (int i = 0; i < f->nk; i++)
+          fprintf(v, "%.17g,%.17g,%.17g,%.17g,%.17g\n",
+                  mfs_disp_plan_spec(f->pl[d])->disc.dilation, f->sig[s], f->th[t],
+                  f->kap[t * f->nk + i],
+                  creal(w[((((size_t)d * f->nsig + s) * f->nth + t) * f->nk + i) * f->nb]));
+  fclose(c);
+  fclose(v);
+}
+
+static void set_threads(int n)
+{
+#ifdef _OPENMP
+  omp_set_num_threads(n);
+#else
+  (void)n;
+#endif
+}
+
+static void bench(FILE *out, const char *name, int repeat, int threads, const char *npdir)
+{
+  family f = make(name);
+  const size_t nval = (size_t)f.nplan * f.nsig * f.nth * f.nk * f.nb;
+  const int npts = f.nplan * f.nsig * f.nth * f.nk;
+  double complex *w = malloc(nval * sizeof *w);
+  const char *phases[] = {"direct", "point", "ray", "ray-stresses"};
+  double tdirect = NAN, *ts = malloc((size_t)repeat * sizeof *ts);
+  for (int p = 0; p < 4; p++) {
+    if (f.nsig == 1 && p == 3)
+      continue; /* one stress: ray-stresses is ray */
+    for (int r = 0; r < repeat; r++) {
+      double t0 = now();
+      run_phase(&f, phases[p], f.nk, f.kap, w);
+      ts[r] = now() - t0;
+    }
+    qsort(ts, (size_t)repeat, sizeof *ts, cmp_d);
+    double med = ts[repeat / 2];
+    if (p == 0)
+      tdirect = med;
+    double err = family_error(&f, w);
+    fprintf(out, "%s,%s,%d,%d,1,%d,%.6g,%.6g,%.6g,%.4g,%.4g,%.4g,,%.3g,%.1f,%.2f\n", name,
+            phases[p], npts, f.nb, repeat, ts[0], med, ts[repeat - 1], 1e9 * med / npts,
+            1e9 * med / npts / f.nb, tdirect / med, err, rss_mb(), load1());
+    fflush(out);
+  }
+  if (npdir)
+    numpy_data(&f, npdir, w);
+  /* threads: a family 20 x larger (wave numbers), 1 and 2 threads, the same bits? */
+  const int nk10 = 20 * f.nk;
+  double *k10 = kappas(&f, nk10);
+  const size_t n10 = (size_t)f.nplan * f.nsig * f.nth * nk10 * f.nb;
+  double complex *w10[2] = {malloc(n10 * sizeof **w10), malloc(n10 * sizeof **w10)};
+  double t1 = NAN;
+  for (int nt = 1; nt <= 2 && threads; nt++) {
+    set_threads(nt);
+    for (int r = 0; r < repeat; r++) {
+      double t0 = now();
+      run_phase(&f, "threads", nk10, k10, w10[nt - 1]);
+      ts[r] = now() - t0;
+    }
+    qsort(ts, (size_t)repeat, sizeof *ts, cmp_d);
+    double med = ts[repeat / 2];
+    if (nt == 1)
+      t1 = med;
+    int same = nt == 1 || memcmp(w10[0], w10[1], n10 * sizeof **w10) == 0;
+    fprintf(out, "%s,threads-%d,%d,%d,%d,%d,%.6g,%.6g,%.6g,%.4g,%.4g,%.4g,%s,,%.1f,%.2f\n", name,
+            nt, npts * 20, f.nb, nt, repeat, ts[0], med, ts[repeat - 1], 1e9 * med / (npts * 20.0),
+            1e9 * med / (npts * 20.0) / f.nb, t1 / med, nt == 1 ? "" : same ? "1" : "0", rss_mb(),
+            load1());
+    fflush(out);
+  }
+  set_threads(2);
+  free(w10[0]);
+  free(w10[1]);
+  free(k10);
+  free(ts);
+  free(w);
+  unmake(&f);
+}
+
+int main(int argc, char **argv)
+{
+  int repeat = 7, threads = 1;
+  const char *fam = NULL, *npdir = NULL;
+  FILE *out = stdout;
+  for (int i = 1; i < argc; i++) {
+    if (!strcmp(argv[i], "--repeat") && i + 1 < argc)
+      repeat = atoi(argv[++i]);
+    else if (!strcmp(argv[i], "--family") && i + 1 < argc)
+      fam = argv[++i];
+    else if (!strcmp(argv[i], "--no-threads"))
+      threads = 0;
+    else if (!strcmp(argv[i], "--numpy-data") && i + 1 < argc)
+      npdir = argv[++i];
+    else if (!strcmp(argv[i], "-o") && i + 1 < argc) {
+      out = fopen(argv[++i], "w");
+      if (!out) {
+        perror(argv[i]);
+        return 2;
+      }
+    } else {
+      fprintf(stderr, "usage: bench_dispersion [--repeat R] [--family NAME] [--no-threads] "
+                      "[--numpy-data DIR] [-o FILE]\n");
+      return 2;
+    }
+  }
+  if (repeat < 1)
+    repeat = 1;
+  const char *fams[] = {"1d", "2d-antiplane", "2d-plane", "2d-star", "2d-star-plane"};
+  fprintf(out, "family,phase,points,branches,threads,repeats,seconds_min,seconds_median,"
+               "seconds_max,ns_per_point,ns_per_point_branch,ratio,identical,error,peak_rss_mb,"
+               "load1\n");
+  for (int k = 0; k < 5; k++)
+    if (!fam || !strcmp(fam, fams[k]))
+      bench(out, fams[k], repeat, threads, npdir);
+  if (out != stdout)
+    fclose(out);
   return 0;
 }

@@ -1,17 +1,20 @@
-/* Benchmark of the stretch map (`mfstab map`, issue 10): the paper 000 eq. 18
- * material on an N x N grid of principal stretches on [0.3, 2]^2, cubic MLS,
- * D = 2, stress-tri, 8 directions x 64 wave numbers per grid point (plus the
- * 64 + 2 samples along the PDE's worst direction, as the command samples),
- * for the Lagrangian and both Eulerian frames.  The same library calls as
- * tools/cmd_map.c, timed by phase:
- *   plan   Lagrangian: the plan and the lattice sums at the zone samples, once;
- *          Eulerian: the plan of every grid point (its current lattice)
- *   eval   the PDE check and the symbols' eigenvalues at every grid point
- * Not a test: nothing here asserts a time.  Single-threaded (one core).
- * CSV (stdout or -o FILE): frame,grid,points,plan_s,eval_s,total_s,
- *   s_per_point,after_plan_s_per_point,pde_stable,stable,stable_outside_pde,
- *   singular,peak_rss_mb
- * (stable_outside_pde is the check: the Lagrangian domain lies within the PDE's).
+/* Benchmark of the stretch map (`mfstab map`, issue 10; both cores, issue 14):
+ * the paper 000 eq. 18 material on an N x N grid of principal stretches on
+ * [0.3, 2]^2, cubic MLS, D = 2, stress-tri, 8 directions x 64 wave numbers per
+ * grid point (plus the 64 + 2 samples along the PDE's worst direction, as the
+ * command samples), for the Lagrangian and both Eulerian frames.  The same
+ * library calls as tools/cmd_map.c, the grid points in parallel (OpenMP, a
+ * workspace per thread) with 1 and 2 threads:
+ *   plan   Lagrangian: the plan and the lattice sums at the zone samples, once
+ *          (Eulerian: none; each grid point's own plan is in the grid time)
+ *   grid   the PDE check, the per-state plans and the symbols' eigenvalues at
+ *          every grid point
+ * identical: 1 if the two thread counts gave the same outcome at every point.
+ * Not a test: nothing here asserts a time.
+ * CSV (stdout or -o FILE): frame,grid,points,threads,plan_s,grid_s,total_s,
+ *   s_per_point,speedup,identical,pde_stable,stable,stable_outside_pde,singular,
+ *   peak_rss_mb,load1   (the least of --repeat runs; stable_outside_pde is the
+ *   check: the Lagrangian domain lies within the PDE's)
  * usage: bench_map [--repeat R] [-o FILE] [N ...]   (default N = 60) */
 #include <complex.h>
 #undef I
@@ -21,6 +24,13 @@
 #include <string.h>
 #include <sys/resource.h>
 #include <time.h>
+
+#ifdef _OPENMP
+#include <omp.h>
+#define MFS_OMP(x) _Pragma(x)
+#else
+#define MFS_OMP(x)
+#endif
 
 #include "mfstab.h"
 
@@ -63,20 +73,19 @@ static int evaluate(const mfs_disp_plan *pl, const mfs_disp_sample *smp, const d
     n[1] *= st->l[1];
   }
   double th = atan2(n[1], n[0]), km = mfs_disp_kappa_max(pl, th) * M_PI;
-  for (size_t i = 0; i < nt; i++) {
-    mfs_status s;
-    if (i < nz) {
-      s = smp ? mfs_disp_sample_omega2(smp, i, st, w + 2 * i)
-              : mfs_disp_omega2_state(pl, st, kz + 2 * i, w + 2 * i);
-    } else {
-      size_t j = i - nz;
-      double kap = j < NWAVE ? km * (j + 1) / NWAVE : (j == NWAVE ? 1e-3 : 1e-2) * M_PI;
-      double k[2] = {kap * cos(th), kap * sin(th)};
-      s = mfs_disp_omega2_state(pl, st, k, w + 2 * i);
-    }
-    if (s != MFS_OK)
-      return -1;
+  double kr[2 * (NWAVE + 2)];
+  for (size_t j = 0; j < NWAVE + 2; j++) {
+    double kap = j < NWAVE ? km * (j + 1) / NWAVE : (j == NWAVE ? 1e-3 : 1e-2) * M_PI;
+    kr[2 * j] = kap * cos(th);
+    kr[2 * j + 1] = kap * sin(th);
   }
+  mfs_status s = smp ? MFS_OK : mfs_disp_omega2_states(pl, st, nz, kz, w);
+  for (size_t i = 0; smp && i < nz && s == MFS_OK; i++)
+    s = mfs_disp_sample_omega2(smp, i, st, w + 2 * i);
+  if (s == MFS_OK)
+    s = mfs_disp_omega2_states(pl, st, NWAVE + 2, kr, w + 2 * nz);
+  if (s != MFS_OK)
+    return -1;
   double scale = 0.0;
   for (size_t i = 0; i < 2 * nt; i++)
     scale = fmax(scale, cabs(w[i]));
@@ -87,7 +96,23 @@ static int evaluate(const mfs_disp_plan *pl, const mfs_disp_sample *smp, const d
   return 1;
 }
 
-static void run(FILE *out, int N, mfs_frame fr, int repeat)
+static double load1(void)
+{
+  double l = NAN;
+  FILE *f = fopen("/proc/loadavg", "r");
+  if (f) {
+    if (fscanf(f, "%lf", &l) != 1)
+      l = NAN;
+    fclose(f);
+  }
+  return l;
+}
+
+/* One grid with nt threads, the least time of repeat runs (returned); res[q]
+ * per point: 4 pde_stable + 2 + (-2 singular, -1 failed, 0 unstable, 1 stable);
+ * res1, t1: those of one thread, to compare. */
+static double run(FILE *out, int N, mfs_frame fr, int repeat, int nt, int *res, const int *res1,
+                  double t1)
 {
   mfs_disc d = mfs_disc_default();
   d.dim = 2;
@@ -96,17 +121,18 @@ static void run(FILE *out, int N, mfs_frame fr, int repeat)
   d.material.physics = MFS_PHYS_PLANE_STRAIN;
   d.frame = fr;
   mfs_hyper mat = mfs_hyper_paper000_constants();
-  int lag = fr == MFS_FRAME_LAGRANGIAN;
-  double best_plan = INFINITY, best_eval = INFINITY;
-  int npde = 0, nst = 0, nout = 0, nsing = 0;
-  double *kz = malloc(2 * NDIR * NWAVE * sizeof *kz);
+  const int lag = fr == MFS_FRAME_LAGRANGIAN;
+  const long npt = (long)N * N;
+  double best_plan = INFINITY, best_grid = INFINITY;
+  double *kz = malloc(2 * NDIR * NWAVE * (size_t)(nt + 1) * sizeof *kz);
+#ifdef _OPENMP
+  omp_set_num_threads(nt);
+#endif
   for (int r = 0; r < repeat; r++) {
-    double tplan = 0.0, teval = 0.0;
-    npde = nst = nout = nsing = 0;
+    double t0 = now();
     mfs_disp_plan *pl = NULL;
     mfs_disp_sample *smp = NULL;
     if (lag) {
-      double t0 = now();
       mfs_disp_spec sp = {.disc = d, .material = mat};
       mfs_status st;
       pl = mfs_disp_plan_alloc(&sp, &st);
@@ -116,50 +142,58 @@ static void run(FILE *out, int N, mfs_frame fr, int repeat)
       }
       zone(pl, kz);
       smp = mfs_disp_sample_alloc(pl, NDIR * NWAVE, kz, &st);
-      tplan += now() - t0;
     }
-    for (int i = 0; i < N; i++)
-      for (int j = 0; j < N; j++) {
-        double l1 = 0.3 + 1.7 * i / (N - 1), l2 = 0.3 + 1.7 * j / (N - 1);
-        double t1 = now();
-        mfs_plane_state ps;
-        mfs_plane_state_stretch(&mat, l1, l2, &ps);
-        mfs_ellipticity e;
-        mfs_ellipticity_check(ps.a, 0, &e);
-        teval += now() - t1;
-        npde += mfs_pde_stable(&e);
-        mfs_disp_plan *own = NULL;
-        if (!lag) {
-          double t0 = now();
-          mfs_disp_spec sp = {.disc = d, .material = mat, .stretch = l1, .stretch_y = l2};
-          mfs_status st;
-          own = mfs_disp_plan_alloc(&sp, &st);
-          if (own)
-            zone(own, kz);
-          tplan += now() - t0;
-          if (!own) {
-            nsing++;
-            continue;
-          }
+    double t1p = now();
+    MFS_OMP("omp parallel for schedule(dynamic)")
+    for (long q = 0; q < npt; q++) {
+      int th = 0;
+#ifdef _OPENMP
+      th = omp_get_thread_num();
+#endif
+      double *kzt = kz + 2 * NDIR * NWAVE * (size_t)(th + 1);
+      double l1 = 0.3 + 1.7 * (q / N) / (N - 1), l2 = 0.3 + 1.7 * (q % N) / (N - 1);
+      mfs_plane_state ps;
+      mfs_plane_state_stretch(&mat, l1, l2, &ps);
+      mfs_ellipticity e;
+      mfs_ellipticity_check(ps.a, 0, &e);
+      int pde = 4 * mfs_pde_stable(&e) + 2;
+      mfs_disp_plan *own = NULL;
+      if (!lag) {
+        mfs_disp_spec sp = {.disc = d, .material = mat, .stretch = l1, .stretch_y = l2};
+        mfs_status st;
+        own = mfs_disp_plan_alloc(&sp, &st);
+        if (!own) {
+          res[q] = pde - 2;
+          continue;
         }
-        double t0 = now();
-        int s = evaluate(own ? own : pl, own ? NULL : smp, kz, &ps, &e, lag);
-        teval += now() - t0;
-        nst += s == 1;
-        nout += s == 1 && !mfs_pde_stable(&e);
-        mfs_disp_plan_free(own);
+        zone(own, kzt);
       }
+      res[q] = evaluate(own ? own : pl, own ? NULL : smp, own ? kzt : kz, &ps, &e, lag) + pde;
+      mfs_disp_plan_free(own);
+    }
+    double t2 = now();
     mfs_disp_sample_free(smp);
     mfs_disp_plan_free(pl);
-    best_plan = fmin(best_plan, tplan);
-    best_eval = fmin(best_eval, teval);
+    best_plan = fmin(best_plan, t1p - t0);
+    best_grid = fmin(best_grid, t2 - t1p);
   }
   free(kz);
-  double pts = (double)N * N;
-  fprintf(out, "%s,%dx%d,%d,%.6g,%.6g,%.6g,%.6g,%.6g,%d,%d,%d,%d,%.1f\n", mfs_frame_name(fr), N, N,
-          N * N, best_plan, best_eval, best_plan + best_eval, (best_plan + best_eval) / pts,
-          (lag ? best_eval : best_plan + best_eval) / pts, npde, nst, nout, nsing, rss_mb());
+  int npde = 0, nst = 0, nout = 0, nsing = 0, same = 1;
+  for (long q = 0; q < npt; q++) {
+    int pde = res[q] >> 2, ev = (res[q] & 3) - 2;
+    npde += pde;
+    nsing += ev == -2;
+    nst += ev == 1;
+    nout += ev == 1 && !pde;
+    same &= !res1 || res1[q] == res[q];
+  }
+  double tot = best_plan + best_grid;
+  fprintf(out, "%s,%dx%d,%ld,%d,%.6g,%.6g,%.6g,%.6g,%.4g,%s,%d,%d,%d,%d,%.1f,%.2f\n",
+          mfs_frame_name(fr), N, N, npt, nt, best_plan, best_grid, tot, tot / npt,
+          res1 ? t1 / tot : 1.0, res1 ? (same ? "1" : "0") : "", npde, nst, nout, nsing, rss_mb(),
+          load1());
   fflush(out);
+  return tot;
 }
 
 int main(int argc, char **argv)
@@ -186,12 +220,18 @@ int main(int argc, char **argv)
     sizes[ns++] = 60;
   if (repeat < 1)
     repeat = 1;
-  fprintf(out, "frame,grid,points,plan_s,eval_s,total_s,s_per_point,after_plan_s_per_point,"
-               "pde_stable,stable,stable_outside_pde,singular,peak_rss_mb\n");
+  fprintf(out, "frame,grid,points,threads,plan_s,grid_s,total_s,s_per_point,speedup,identical,"
+               "pde_stable,stable,stable_outside_pde,singular,peak_rss_mb,load1\n");
   const mfs_frame frames[3] = {MFS_FRAME_LAGRANGIAN, MFS_FRAME_EULERIAN, MFS_FRAME_EULERIAN_CONSISTENT};
   for (int s = 0; s < ns; s++)
-    for (int f = 0; f < 3; f++)
-      run(out, sizes[s], frames[f], repeat);
+    for (int f = 0; f < 3; f++) {
+      size_t npt = (size_t)sizes[s] * sizes[s];
+      int *r1 = malloc(npt * sizeof *r1), *r2 = malloc(npt * sizeof *r2);
+      double t1 = run(out, sizes[s], frames[f], repeat, 1, r1, NULL, 0.0);
+      run(out, sizes[s], frames[f], repeat, 2, r2, r1, t1);
+      free(r1);
+      free(r2);
+    }
   if (out != stdout)
     fclose(out);
   return 0;

@@ -24,7 +24,9 @@ run() {
   solver) "$bin/bench_solver" 100000 200 | awk -F, 'NR>1{print $3"_D"$4","$6}' ;;
   assembly) "$bin/bench_assembly" 500 | awk -F, 'NR==1{for(k=1;k<=NF;k++)h[$k]=k; next}
             {print $h["phase"]","$h["seconds"]}' ;;
-  dispersion) "$bin/bench_dispersion" 2>/dev/null | awk -F, 'NR>2{print $1"_"$2","$4}' ;;
+  dispersion) "$bin/bench_dispersion" 2>/dev/null | awk -F, 'NR==1{for(k=1;k<=NF;k++)h[$k]=k
+            t = ("seconds_median" in h) ? h["seconds_median"] : h["seconds"]; next}
+            {print $h["family"]"_"$h["phase"]","$t}' ;;
   eigs) "$bin/bench_eigs" 316 | awk -F, '{print "setup,"$5; print "bound,"$6; print "eig,"$7}' ;;
   esac >"$tmp/$name.$tag.$i"
 }

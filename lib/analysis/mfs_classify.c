@@ -7,6 +7,18 @@
 #include <stdlib.h>
 #include <string.h>
 
+/* The sweeps run in parallel (OpenMP) over fixed chunks of CHUNK samples of
+ * every ray; each sample is computed on its own (mfs_disp_ray) and the
+ * chunks' minima and maxima are combined in chunk order, so the results are
+ * the same bits for any number of threads. */
+#ifdef _OPENMP
+#define MFS_OMP(x) _Pragma(x)
+#else
+#define MFS_OMP(x)
+#endif
+
+enum { CHUNK = 64 };
+
 /* The kappa of sample i on a ray with kappa_max km. */
 static double sample(const mfs_sampling *smp, double km, size_t i)
 {
@@ -18,48 +30,92 @@ static size_t nsamples(const mfs_sampling *smp)
   return smp->kappa ? smp->nkappa : (size_t)smp->npoints;
 }
 
+/* The smallest real part (want_max 0) or the largest modulus (1) of omega^2
+ * at sbar over the rays of smp, at kappa_max * i / npts for i = i0 .. npts,
+ * points that fail skipped (their values are NaN).  red holds a value per
+ * chunk (ntheta ceil((npts - i0 + 1) / CHUNK)). */
+static double extreme(const mfs_disp_plan *pl, double sbar, const mfs_sampling *smp, int i0,
+                      int npts, int want_max, double *red)
+{
+  const int nb = mfs_disp_branches(pl);
+  const long nper = (long)(npts - i0 + 1), nch = (nper + CHUNK - 1) / CHUNK;
+  const long ntask = (long)smp->ntheta * nch;
+  MFS_OMP("omp parallel for schedule(static) if (ntask > 1)")
+  for (long task = 0; task < ntask; task++) {
+    const size_t t = (size_t)(task / nch);
+    const long c0 = (task % nch) * CHUNK, len = nper - c0 < CHUNK ? nper - c0 : CHUNK;
+    const double km = mfs_disp_kappa_max(pl, smp->theta[t]);
+    double kap[CHUNK], m = want_max ? 0.0 : INFINITY;
+    double complex buf[CHUNK * 4];
+    for (long i = 0; i < len; i++)
+      kap[i] = km * (double)(i0 + c0 + i) / npts;
+    if (mfs_disp_ray(pl, &sbar, 1, smp->theta[t], kap, (size_t)len, buf, 0) != MFS_EINVAL)
+      for (long i = 0; i < len * nb; i++) {
+        double v = want_max ? cabs(buf[i]) : creal(buf[i]);
+        if (want_max ? v > m : v < m)
+          m = v;
+      }
+    red[task] = m;
+  }
+  double m = want_max ? 0.0 : INFINITY;
+  for (long task = 0; task < ntask; task++)
+    if (want_max ? red[task] > m : red[task] < m)
+      m = red[task];
+  return m;
+}
+
 /* Smallest real part of omega^2 over the sampled kappa of all rays
  * (npts uniform samples in (0, kappa_max]). */
 static double min_omega2(const mfs_disp_plan *pl, double sbar, const mfs_sampling *smp, int npts,
-                         double complex *buf)
+                         double *red)
 {
-  double m = INFINITY;
-  int nb = mfs_disp_branches(pl);
-  for (size_t t = 0; t < smp->ntheta; t++) {
-    double km = mfs_disp_kappa_max(pl, smp->theta[t]);
-    for (int i = 1; i <= npts; i++) {
-      double kap = km * i / npts;
-      if (mfs_disp_omega2(pl, sbar, kap, smp->theta[t], buf) != MFS_OK)
-        continue;
-      for (int b = 0; b < nb; b++)
-        m = creal(buf[b]) < m ? creal(buf[b]) : m;
-    }
-  }
-  return m;
+  return extreme(pl, sbar, smp, 1, npts, 0, red);
 }
 
 /* Smallest |sbar| in the direction sign (+1 tension, -1 compression) at
  * which some omega^2 < -tol; NAN if none up to the limit. */
 static double onset(const mfs_disp_plan *pl, int sign, const mfs_sampling *smp, int npts,
-                    double tol, double complex *buf)
+                    double tol, double *red)
 {
   double lo = 0.0, hi = sign > 0 ? 10.0 : 1.0 + 1e-9;
   mfs_plane_state ps;
   if (mfs_disp_plan_spec(pl)->disc.material.physics == MFS_PHYS_PLANE_STRAIN &&
       mfs_disp_state(pl, sign * hi, &ps) != MFS_OK)
     return NAN; /* a finite material: the state is the plan's */
-  if (min_omega2(pl, sign * hi, smp, npts, buf) >= -tol)
+  if (min_omega2(pl, sign * hi, smp, npts, red) >= -tol)
     return NAN;
-  if (min_omega2(pl, 0.0, smp, npts, buf) < -tol)
+  if (min_omega2(pl, 0.0, smp, npts, red) < -tol)
     return 0.0;
   for (int it = 0; it < 50; it++) {
     double mid = 0.5 * (lo + hi);
-    if (min_omega2(pl, sign * mid, smp, npts, buf) < -tol)
+    if (min_omega2(pl, sign * mid, smp, npts, red) < -tol)
       hi = mid;
     else
       lo = mid;
   }
   return sign * hi;
+}
+
+/* omega^2 at every sample of ray t at sbar into w (nk nb), in parallel over
+ * chunks; MFS_OK or the status of the first failing sample. */
+static mfs_status ray_samples(const mfs_disp_plan *pl, double sbar, const mfs_sampling *smp,
+                              size_t t, double complex *w, mfs_status *cst)
+{
+  const int nb = mfs_disp_branches(pl);
+  const long nk = (long)nsamples(smp), nch = (nk + CHUNK - 1) / CHUNK;
+  const double th = smp->theta[t], km = mfs_disp_kappa_max(pl, th);
+  MFS_OMP("omp parallel for schedule(static) if (nch > 1)")
+  for (long c = 0; c < nch; c++) {
+    const long c0 = c * CHUNK, len = nk - c0 < CHUNK ? nk - c0 : CHUNK;
+    double kap[CHUNK];
+    for (long i = 0; i < len; i++)
+      kap[i] = sample(smp, km, (size_t)(c0 + i));
+    cst[c] = mfs_disp_ray(pl, &sbar, 1, th, kap, (size_t)len, w + c0 * nb, 0);
+  }
+  for (long c = 0; c < nch; c++)
+    if (cst[c] != MFS_OK)
+      return cst[c];
+  return MFS_OK;
 }
 
 /* The wave vector of (kappa, theta) in 1/dx. */
@@ -142,24 +198,21 @@ mfs_status mfs_classify(const mfs_disp_plan *pl, const mfs_sampling *smp, const 
     return MFS_EINVAL;
   const int nb = mfs_disp_branches(pl), nk = (int)nsamples(smp);
   double complex buf[4];
+  /* a chunk's extreme per (ray, chunk) of the sweeps, the statuses of a ray's chunks */
+  size_t nred = smp->ntheta * ((size_t)(nk > 201 ? nk : 201) / CHUNK + 1);
   double complex *w = mfs_malloc((size_t)nk * (size_t)nb * sizeof *w);
-  if (!w)
-    return MFS_ENOMEM;
-  mfs_status st = MFS_OK;
-  /* the scale: the largest |omega^2| at sbar = 0, for relative zero tests */
-  double scale = 0.0;
-  for (size_t t = 0; t < smp->ntheta; t++) {
-    double km = mfs_disp_kappa_max(pl, smp->theta[t]);
-    for (int i = 0; i <= 200; i++) {
-      if (mfs_disp_omega2(pl, 0.0, km * i / 200, smp->theta[t], buf) != MFS_OK)
-        continue;
-      for (int b = 0; b < nb; b++)
-        scale = cabs(buf[b]) > scale ? cabs(buf[b]) : scale;
-    }
-  }
+  double *red = mfs_malloc(nred * sizeof *red);
+  mfs_status *cst = mfs_malloc(((size_t)nk / CHUNK + 1) * sizeof *cst);
+  mfs_status st = MFS_ENOMEM;
+  if (!w || !red || !cst)
+    goto done;
+  st = MFS_OK;
+  /* the scale: the largest |omega^2| at sbar = 0 (201 samples per ray), for relative zero tests */
+  double scale = extreme(pl, 0.0, &(mfs_sampling){.theta = smp->theta, .ntheta = smp->ntheta}, 0,
+                         200, 1, red);
   const double tol = 1e-10 * scale;
-  double onset_t = onset(pl, +1, smp, nk, tol, buf);
-  double onset_c = onset(pl, -1, smp, nk, tol, buf);
+  double onset_t = onset(pl, +1, smp, nk, tol, red);
+  double onset_c = onset(pl, -1, smp, nk, tol, red);
   for (size_t si = 0; si < nsbar && st == MFS_OK; si++) {
     double sb = sbar[si];
     mfs_class c = {.sbar = sb,
@@ -177,8 +230,7 @@ mfs_status mfs_classify(const mfs_disp_plan *pl, const mfs_sampling *smp, const 
     int nzero0 = 0;
     for (size_t t = 0; t < smp->ntheta && st == MFS_OK; t++) {
       double th = smp->theta[t], km = mfs_disp_kappa_max(pl, th);
-      for (int i = 0; i < nk && st == MFS_OK; i++)
-        st = mfs_disp_omega2(pl, sb, sample(smp, km, (size_t)i), th, w + (size_t)i * nb);
+      st = ray_samples(pl, sb, smp, t, w, cst);
       for (int i = 0; i < nk && st == MFS_OK; i++) {
         double kap = sample(smp, km, (size_t)i), kv[2];
         wave_vector(pl, kap, th, kv);
@@ -210,8 +262,7 @@ mfs_status mfs_classify(const mfs_disp_plan *pl, const mfs_sampling *smp, const 
         }
       }
       if (sb != 0.0 && st == MFS_OK) { /* rank deficiency: zeros at sbar = 0 */
-        for (int i = 0; i < nk && st == MFS_OK; i++)
-          st = mfs_disp_omega2(pl, 0.0, sample(smp, km, (size_t)i), th, w + (size_t)i * nb);
+        st = ray_samples(pl, 0.0, smp, t, w, cst);
         for (int i = 0; i < nk && st == MFS_OK; i++) {
           double kv[2];
           wave_vector(pl, sample(smp, km, (size_t)i), th, kv);
@@ -239,7 +290,10 @@ mfs_status mfs_classify(const mfs_disp_plan *pl, const mfs_sampling *smp, const 
     c.labels = mfs_class_labels(c.unstable, &c.pde, c.sigma_nn, smean, nzero0);
     out[si] = c;
   }
+done:
   mfs_free(w);
+  mfs_free(red);
+  mfs_free(cst);
   return st;
 }
 

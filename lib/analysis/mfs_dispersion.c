@@ -13,6 +13,9 @@
 
 #define P4(i, j, k, l) ((((i)*2 + (j)) * 2 + (k)) * 2 + (l))
 
+/* Raw components of the folded sums: at most 2 x 2 blocks of 9. */
+enum { MFS_DISP_NC = 36 };
+
 typedef struct {
   int row, col;  /* branch indices: unit-cell particle * ndof + dof (plane: the particles) */
   double d[2];   /* x_K - x_I */
@@ -30,9 +33,22 @@ struct mfs_disp_plan {
   mfs_plane_state st0;  /* that state */
   double R[2][2];  /* primitive translations of the unit cell */
   double a1[2], a2[2];
-  int mij;         /* plane strain: the largest |i|, |j| of the terms' offsets */
+  int mij;         /* the largest |i|, |j| of the terms' offsets */
   size_t nterm;
   disp_term *t;
+  /* The lattice sums folded over pairs of opposite offsets (fold_build), for
+   * the evaluators: the raw values of every block (row, col) of particles,
+   * nraw per block (scalar: A, G, M; plane strain: A^{jl}, G^{jk}, M), nc in
+   * all; their sums over all terms (k = 0), and per offset of the half plane
+   * their symmetric and antisymmetric parts, kept for the components that
+   * are not zero everywhere. */
+  int nraw, nc;
+  double c0[MFS_DISP_NC], corig[MFS_DISP_NC]; /* sums over all terms, over those at d = 0 */
+  size_t no;
+  int *oi, *oj;           /* the offsets d = i a1 + j a2: i > 0, or i = 0 and j > 0 */
+  int nsym, nanti;        /* components kept */
+  int csym[MFS_DISP_NC], canti[MFS_DISP_NC];
+  double *sym, *anti;     /* no x nsym, no x nanti */
 };
 
 static const char *const support_names[] = {"volume", "reference"};
@@ -57,6 +73,10 @@ void mfs_disp_plan_free(mfs_disp_plan *pl)
   if (!pl)
     return;
   mfs_free(pl->t);
+  mfs_free(pl->oi);
+  mfs_free(pl->oj);
+  mfs_free(pl->sym);
+  mfs_free(pl->anti);
   mfs_free(pl);
 }
 
@@ -119,6 +139,8 @@ static int add_terms(mfs_disp_plan *dp, const mfs_particles *p, const mfs_row *r
     }
     if (!d->shape->partition_of_unity)
       ms = p->vol[I];
+    if (d->node_volume_mass) /* eq. 119's node volume */
+      ms = mfs_particles_node_volume(p);
     if (!d->consistent_mass) {
       disp_term *t = push_term(dp, cap);
       if (!t)
@@ -149,6 +171,8 @@ static int add_terms(mfs_disp_plan *dp, const mfs_particles *p, const mfs_row *r
   }
   if (!d->shape->partition_of_unity) /* sph: particle mass rho V (eq. 51) */
     msum[0] = msum[1] = p->vol[I];
+  if (d->node_volume_mass) /* eq. 119's node volume */
+    msum[0] = msum[1] = mfs_particles_node_volume(p);
   if (!d->consistent_mass) /* lumped: row sums on the diagonal */
     for (int a = 0; a < nd; a++) {
       disp_term *t = push_term(dp, cap);
@@ -157,6 +181,128 @@ static int add_terms(mfs_disp_plan *dp, const mfs_particles *p, const mfs_row *r
       *t = (disp_term){.row = cls * nd + a, .col = cls * nd + a, .M = msum[a]};
     }
   return MFS_OK;
+}
+
+/* The raw values of term t (scalar: A, G, M; plane strain: A^{jl}, G^{jk}, M). */
+static void term_raw(const mfs_disp_plan *dp, const disp_term *t, double *r)
+{
+  if (dp->plane) {
+    memcpy(r, t->A2, 4 * sizeof *r);
+    memcpy(r + 4, t->G2, 4 * sizeof *r);
+    r[8] = t->M;
+  } else {
+    r[0] = t->A;
+    r[1] = t->G;
+    r[2] = t->M;
+  }
+}
+
+typedef struct {
+  int i, j, sign; /* the offset in the half plane, and +1 or -1 for the term's own */
+  size_t t;
+} fold_key;
+
+static int cmp_key(const void *a, const void *b)
+{
+  const fold_key *x = a, *y = b;
+  if (x->i != y->i)
+    return (x->i > y->i) - (x->i < y->i);
+  if (x->j != y->j)
+    return (x->j > y->j) - (x->j < y->j);
+  return (x->t > y->t) - (x->t < y->t);
+}
+
+/* Fold the terms over pairs of opposite offsets:
+ *   sum_t c_t e^{ik.d_t} = c(0) + sum_o (c_o + c_-o) cos k.d_o + i sum_o (c_o - c_-o) sin k.d_o
+ *                        = sum_t c_t - sum_o (c_o + c_-o) (1 - cos k.d_o) + i ...
+ * over the offsets o of the half plane (c_o the value at d_o, c_-o at -d_o,
+ * c(0) at d = 0).  Long waves take the second form: the versine keeps them
+ * exact to rounding, where cosines near 1 would cancel against c(0) (the
+ * stiffness has sum_t c_t ~ 0, a rigid translation); shorter ones the first,
+ * whose cosines carry half the rounding of a versine near 2. */
+static mfs_status fold_build(mfs_disp_plan *dp)
+{
+  dp->nraw = dp->plane ? 9 : 3;
+  dp->nc = dp->nb * dp->nb * dp->nraw;
+  mfs_status st = MFS_ENOMEM;
+  fold_key *key = mfs_malloc((dp->nterm + 1) * sizeof *key);
+  double *pm = NULL; /* per offset: the c_o (nc) then the c_-o (nc) */
+  if (!key)
+    goto done;
+  size_t nk = 0;
+  memset(dp->c0, 0, sizeof dp->c0);
+  memset(dp->corig, 0, sizeof dp->corig);
+  for (size_t t = 0; t < dp->nterm; t++) {
+    const disp_term *tt = dp->t + t;
+    double r[9];
+    term_raw(dp, tt, r);
+    int blk = (tt->row * dp->nb + tt->col) * dp->nraw;
+    for (int q = 0; q < dp->nraw; q++)
+      dp->c0[blk + q] += r[q];
+    int i = tt->ij[0], j = tt->ij[1];
+    if (i == 0 && j == 0) {
+      for (int q = 0; q < dp->nraw; q++)
+        dp->corig[blk + q] += r[q];
+      continue;
+    }
+    int pos = i > 0 || (i == 0 && j > 0);
+    key[nk++] = (fold_key){.i = pos ? i : -i, .j = pos ? j : -j, .sign = pos ? 1 : -1, .t = t};
+  }
+  qsort(key, nk, sizeof *key, cmp_key);
+  size_t no = 0;
+  for (size_t q = 0; q < nk; q++)
+    no += q == 0 || key[q].i != key[q - 1].i || key[q].j != key[q - 1].j;
+  const int nc = dp->nc;
+  dp->no = no;
+  dp->oi = mfs_malloc((no + 1) * sizeof *dp->oi);
+  dp->oj = mfs_malloc((no + 1) * sizeof *dp->oj);
+  pm = mfs_calloc(2 * (no + 1) * (size_t)nc, sizeof *pm);
+  if (!dp->oi || !dp->oj || !pm)
+    goto done;
+  size_t o = 0;
+  for (size_t q = 0; q < nk; q++) {
+    if (q > 0 && (key[q].i != key[q - 1].i || key[q].j != key[q - 1].j))
+      o++;
+    dp->oi[o] = key[q].i;
+    dp->oj[o] = key[q].j;
+    const disp_term *tt = dp->t + key[q].t;
+    double r[9];
+    term_raw(dp, tt, r);
+    double *c = pm + (2 * o + (key[q].sign > 0 ? 0 : 1)) * (size_t)nc +
+                (size_t)((tt->row * dp->nb + tt->col) * dp->nraw);
+    for (int k = 0; k < dp->nraw; k++)
+      c[k] += r[k];
+  }
+  /* keep the components that are not zero at every offset */
+  dp->nsym = dp->nanti = 0;
+  for (int c = 0; c < nc; c++) {
+    int s = 0, a = 0;
+    for (o = 0; o < no; o++) {
+      double p = pm[2 * o * (size_t)nc + c], m = pm[(2 * o + 1) * (size_t)nc + c];
+      s |= p + m != 0.0;
+      a |= p - m != 0.0;
+    }
+    if (s)
+      dp->csym[dp->nsym++] = c;
+    if (a)
+      dp->canti[dp->nanti++] = c;
+  }
+  dp->sym = mfs_malloc((no * (size_t)dp->nsym + 1) * sizeof *dp->sym);
+  dp->anti = mfs_malloc((no * (size_t)dp->nanti + 1) * sizeof *dp->anti);
+  if (!dp->sym || !dp->anti)
+    goto done;
+  for (o = 0; o < no; o++) {
+    const double *p = pm + 2 * o * (size_t)nc, *m = p + nc;
+    for (int c = 0; c < dp->nsym; c++)
+      dp->sym[o * (size_t)dp->nsym + c] = p[dp->csym[c]] + m[dp->csym[c]];
+    for (int c = 0; c < dp->nanti; c++)
+      dp->anti[o * (size_t)dp->nanti + c] = p[dp->canti[c]] - m[dp->canti[c]];
+  }
+  st = MFS_OK;
+done:
+  mfs_free(key);
+  mfs_free(pm);
+  return st;
 }
 
 /* MFS_OK or MFS_ENOTSUP for what the analysis does not cover. */
@@ -352,18 +498,21 @@ mfs_disp_plan *mfs_disp_plan_alloc(const mfs_disp_spec *s, mfs_status *status)
     if ((st = add_terms(dp, p, &r, I, &cap, mscale)) != MFS_OK)
       goto done;
   }
-  if (dp->plane) { /* the lattice coordinates of every offset, for the phase tables */
+  { /* the lattice coordinates of every offset, for the phase tables */
     double det = dp->a1[0] * dp->a2[1] - dp->a1[1] * dp->a2[0];
     for (size_t i = 0; i < dp->nterm; i++) {
       disp_term *t = dp->t + i;
-      double u = (t->d[0] * dp->a2[1] - t->d[1] * dp->a2[0]) / det;
-      double v = (dp->a1[0] * t->d[1] - dp->a1[1] * t->d[0]) / det;
+      double u = d.dim == 1 ? t->d[0] / dp->a1[0]
+                            : (t->d[0] * dp->a2[1] - t->d[1] * dp->a2[0]) / det;
+      double v = d.dim == 1 ? 0.0 : (dp->a1[0] * t->d[1] - dp->a1[1] * t->d[0]) / det;
       t->ij[0] = (int)lround(u);
       t->ij[1] = (int)lround(v);
       int m = abs(t->ij[0]) > abs(t->ij[1]) ? abs(t->ij[0]) : abs(t->ij[1]);
       dp->mij = m > dp->mij ? m : dp->mij;
     }
   }
+  if ((st = fold_build(dp)) != MFS_OK)
+    goto done;
   st = MFS_OK;
 done:
   mfs_row_free(&r);
@@ -393,18 +542,19 @@ mfs_status mfs_disp_state(const mfs_disp_plan *dp, double sbar, mfs_plane_state 
                                 dp->spec.stress_xy, s);
 }
 
-/* The lattice sums of the plane-strain terms at k: per branch pair (row,
- * col) of particles, SA[.][4] = sum A^{jl} e^{ik.d}, SG likewise, SM the mass. */
+/* The lattice sums of the raw components at one wave vector: s[(row nb +
+ * col) nraw + q] (plane strain: q < 4 A^{jl}, q < 8 G^{jk}, q = 8 the mass). */
 typedef struct {
-  double complex SA[2][2][4], SG[2][2][4], SM[2][2];
-} plane_sums;
+  double complex s[MFS_DISP_NC];
+} raw_sums;
 
 enum { MAX_MIJ = 256 };
 
-static void plane_sum(const mfs_disp_plan *dp, const double *k, plane_sums *ps)
+/* The direct sums, term by term (the reference for the folded sums): e^{ik.d}
+ * = e^{i i k.a1} e^{i j k.a2} from tables of powers, sincos of each power. */
+static void plane_sum(const mfs_disp_plan *dp, const double *k, raw_sums *ps)
 {
   memset(ps, 0, sizeof *ps);
-  /* e^{ik.d} = e^{i i k.a1} e^{i j k.a2} from tables of powers (no sincos per term) */
   int M = dp->mij < MAX_MIJ ? dp->mij : MAX_MIJ;
   double complex p1[2 * MAX_MIJ + 1], p2[2 * MAX_MIJ + 1];
   double ph1 = k[0] * dp->a1[0] + k[1] * dp->a1[1], ph2 = k[0] * dp->a2[0] + k[1] * dp->a2[1];
@@ -424,26 +574,26 @@ static void plane_sum(const mfs_disp_plan *dp, const double *k, plane_sums *ps)
       double ph = k[0] * t->d[0] + k[1] * t->d[1];
       e = cos(ph) + _Complex_I * sin(ph);
     }
-    double complex *sa = ps->SA[t->row][t->col], *sg = ps->SG[t->row][t->col];
+    double complex *s = ps->s + (t->row * dp->nb + t->col) * 9;
     for (int q = 0; q < 4; q++)
-      sa[q] += t->A2[q] * e;
+      s[q] += t->A2[q] * e;
     if (dp->euler2)
       for (int q = 0; q < 4; q++)
-        sg[q] += t->G2[q] * e;
-    ps->SM[t->row][t->col] += t->M * e;
+        s[4 + q] += t->G2[q] * e;
+    s[8] += t->M * e;
   }
 }
 
 /* K and M (nbr x nbr) of a state from the sums: Lagrangian K_ik = A_ijkl SA^{jl};
  * Eulerian K_ik = a_ijkl SA^{jl} + sigma_im SA^{km} + sigma_ij SG^{jk} (eq. C6). */
-static void plane_contract(const mfs_disp_plan *dp, const plane_sums *ps, const mfs_plane_state *st,
+static void plane_contract(const mfs_disp_plan *dp, const raw_sums *ps, const mfs_plane_state *st,
                            double complex *K, double complex *M)
 {
   const int n = dp->nbr;
   const double *t = dp->euler2 ? st->a : st->A, *sg = st->sigma;
   for (int rb = 0; rb < dp->nb; rb++)
     for (int cb = 0; cb < dp->nb; cb++) {
-      const double complex *A = ps->SA[rb][cb], *G = ps->SG[rb][cb];
+      const double complex *A = ps->s + (rb * dp->nb + cb) * 9, *G = A + 4;
       for (int i = 0; i < 2; i++)
         for (int k = 0; k < 2; k++) {
           double complex v = 0.0;
@@ -454,9 +604,38 @@ static void plane_contract(const mfs_disp_plan *dp, const plane_sums *ps, const 
             for (int m = 0; m < 2; m++)
               v += sg[i * 2 + m] * A[k * 2 + m] + sg[i * 2 + m] * G[m * 2 + k];
           K[(rb * 2 + i) * n + cb * 2 + k] = v;
-          M[(rb * 2 + i) * n + cb * 2 + k] = i == k ? ps->SM[rb][cb] : 0.0;
+          M[(rb * 2 + i) * n + cb * 2 + k] = i == k ? A[8] : 0.0;
         }
     }
+}
+
+/* The scalar operator's coefficients at stress sbar: K = ca A + cg G. */
+static void scalar_coef(const mfs_disp_plan *dp, double sbar, double *ca, double *cg)
+{
+  const mfs_disc *s = &dp->spec.disc;
+  double F = dp->spec.stretch > 0.0 ? dp->spec.stretch : 1.0;
+  if (s->dim == 1 && s->frame != MFS_FRAME_LAGRANGIAN) {
+    *ca = 1.0 + 2.0 * sbar; /* C~ + sigma, eq. 75 */
+    *cg = sbar;
+  } else if (s->dim == 1) {
+    *ca = F * F + sbar; /* C-bar = C F^2 + S, eq. 81 */
+    *cg = 0.0;
+  } else {
+    *ca = 1.0 + sbar;
+    *cg = 0.0;
+  }
+}
+
+/* K and M (nbr x nbr) of the scalar operator from the sums. */
+static void scalar_contract(const mfs_disp_plan *dp, const raw_sums *ps, double ca, double cg,
+                            double complex *K, double complex *M)
+{
+  const int nb = dp->nb;
+  for (int b = 0; b < nb * nb; b++) {
+    const double complex *s = ps->s + b * 3;
+    K[b] = CMPLX(ca * creal(s[0]) + cg * creal(s[1]), ca * cimag(s[0]) + cg * cimag(s[1]));
+    M[b] = s[2];
+  }
 }
 
 static int same_stretch(const mfs_disp_plan *dp, const mfs_plane_state *s)
@@ -470,7 +649,7 @@ mfs_status mfs_disp_symbols_state(const mfs_disp_plan *dp, const mfs_plane_state
 {
   if (!dp->plane || !s || !same_stretch(dp, s))
     return MFS_EINVAL;
-  plane_sums ps;
+  raw_sums ps;
   plane_sum(dp, k, &ps);
   plane_contract(dp, &ps, s, K, M);
   return MFS_OK;
@@ -479,26 +658,15 @@ mfs_status mfs_disp_symbols_state(const mfs_disp_plan *dp, const mfs_plane_state
 mfs_status mfs_disp_symbols(const mfs_disp_plan *dp, double sbar, const double *k,
                             double complex *K, double complex *M)
 {
-  const mfs_disp_spec *sp = &dp->spec;
-  const mfs_disc *s = &sp->disc;
+  const mfs_disc *s = &dp->spec.disc;
   int n = dp->nbr;
   if (dp->plane) {
     mfs_plane_state st;
     mfs_status e = mfs_disp_state(dp, sbar, &st);
     return e != MFS_OK ? e : mfs_disp_symbols_state(dp, &st, k, K, M);
   }
-  double F = sp->stretch > 0.0 ? sp->stretch : 1.0;
   double ca, cg;
-  if (s->dim == 1 && s->frame != MFS_FRAME_LAGRANGIAN) {
-    ca = 1.0 + 2.0 * sbar; /* C~ + sigma, eq. 75 */
-    cg = sbar;
-  } else if (s->dim == 1) {
-    ca = F * F + sbar; /* C-bar = C F^2 + S, eq. 81 */
-    cg = 0.0;
-  } else {
-    ca = 1.0 + sbar;
-    cg = 0.0;
-  }
+  scalar_coef(dp, sbar, &ca, &cg);
   for (int i = 0; i < n * n; i++)
     K[i] = M[i] = 0.0;
   for (size_t i = 0; i < dp->nterm; i++) {
@@ -517,30 +685,50 @@ static int cmp_re(const void *a, const void *b)
   return (x > y) - (x < y);
 }
 
+/* x / y; by a real y without the complex division (the lumped masses). */
+static inline double complex cdiv(double complex x, double complex y)
+{
+  return cimag(y) == 0.0 ? CMPLX(creal(x) / creal(y), cimag(x) / creal(y)) : x / y;
+}
+
+/* omega^2 = K / M of one branch. */
+static inline mfs_status solve1(double complex K, double complex M, int herm, double complex *omega2)
+{
+  if (M == 0.0)
+    return MFS_EDOMAIN;
+  if (herm)
+    *omega2 = creal(K) / creal(M);
+  else
+    *omega2 = cdiv(K, M);
+  return isfinite(creal(*omega2)) && isfinite(cimag(*omega2)) ? MFS_OK : MFS_EDOMAIN;
+}
+
 /* The generalized eigenvalues of K v = omega^2 M v (n x n), sorted by real
  * part; herm: K and M Hermitian.  A 2 x 2 problem with M = m I (one particle,
  * lumped mass) in closed form. */
 static mfs_status eig_solve(int n, double complex *K, double complex *M, int herm,
                             double complex *omega2)
 {
-  if (n == 1) {
-    if (cabs(M[0]) == 0.0)
+  if (n == 1)
+    return solve1(K[0], M[0], herm, omega2);
+  if (n == 2 && M[1] == 0.0 && M[2] == 0.0 &&
+      (M[0] == M[3] || !herm || (creal(M[0]) > 0.0 && creal(M[3]) > 0.0))) {
+    /* a diagonal mass (lumped): the eigenvalues of M^-1 K, or for Hermitian
+     * symbols of M^-1/2 K M^-1/2 */
+    if (M[0] == 0.0 || M[3] == 0.0)
       return MFS_EDOMAIN;
-    omega2[0] = herm ? creal(K[0]) / creal(M[0]) : K[0] / M[0];
-    return isfinite(creal(omega2[0])) && isfinite(cimag(omega2[0])) ? MFS_OK : MFS_EDOMAIN;
-  }
-  if (n == 2 && M[1] == 0.0 && M[2] == 0.0 && M[0] == M[3]) {
-    if (cabs(M[0]) == 0.0)
-      return MFS_EDOMAIN;
-    double complex m = M[0];
+    double complex m = M[0], m1 = M[3];
     if (herm) {
-      double a = creal(K[0]) / creal(m), d = creal(K[3]) / creal(m);
-      double b = cabs(K[1]) / creal(m), r = hypot(0.5 * (a - d), b);
+      /* r = |((a - d) / 2, |K01| / sqrt(m0 m1))| by one square root (no hypot:
+       * these are neither huge nor tiny) */
+      double a = creal(K[0]) / creal(m), d = creal(K[3]) / creal(m1), h = 0.5 * (a - d);
+      double k2 = creal(K[1]) * creal(K[1]) + cimag(K[1]) * cimag(K[1]);
+      double r = sqrt(h * h + k2 / (creal(m) * creal(m1)));
       omega2[0] = 0.5 * (a + d) - r;
       omega2[1] = 0.5 * (a + d) + r;
       return isfinite(r) && isfinite(a + d) ? MFS_OK : MFS_EDOMAIN;
     }
-    double complex a = K[0] / m, b = K[1] / m, c = K[2] / m, d = K[3] / m;
+    double complex a = cdiv(K[0], m), b = cdiv(K[1], m), c = cdiv(K[2], m1), d = cdiv(K[3], m1);
     double complex h = 0.5 * (a - d), r = csqrt(h * h + b * c);
     omega2[0] = 0.5 * (a + d) - r;
     omega2[1] = 0.5 * (a + d) + r;
@@ -599,26 +787,475 @@ static int hermitian(const mfs_disp_plan *dp)
   return herm && dp->spec.ls_beta == 0.0;
 }
 
+/* Wave vectors are evaluated in blocks of up to BLK points, the innermost
+ * loops over the points of a block (which the compiler vectorizes); every
+ * operation is elementwise, so a point's value does not depend on the other
+ * points of its block. */
+enum { BLK = 8 };
+
+/* The block kernels are compiled twice where the compiler can dispatch at run
+ * time (GCC on x86-64 Linux: ifunc), for SSE2 and for AVX2 without FMA: the
+ * same additions and multiplications, each rounded the same way, so the two
+ * give the same bits, AVX2 with twice the lanes per instruction. */
+#if defined(__GNUC__) && !defined(__clang__) && defined(__x86_64__) && defined(__linux__) && \
+  !defined(MFS_NO_CLONES)
+#define MFS_CLONES __attribute__((target_clones("avx2", "default")))
+#define MFS_INLINE __attribute__((always_inline)) inline /* into each clone */
+#else
+#define MFS_CLONES
+#define MFS_INLINE inline
+#endif
+
+/* cos x, 1 - cos x and sin x of x[0..np), each to about an ulp absolute and
+ * the versine, near x = 0, also relative (1 - cos x computed as such loses
+ * it): x reduced to |r| <= pi/4 by n = nearest(x 2/pi) with pi/2 in two
+ * parts (fdlibm's split: the first 33 bits, so that n pi/2 is exact for |n| <
+ * 2^20, then the rest), Taylor series of sin r and 1 - cos r to r^17 and r^18
+ * (the next terms are below 1e-19 at pi/4), then the quadrant, without
+ * branches.  libm beyond |x| = 1e5 (far outside the Brillouin zone). */
+MFS_CLONES static void sincos_v(int np, const double *x, double *c, double *v, double *s)
+{
+  static const double two_pi = 6.36619772367581382433e-01, /* 2 / pi */
+    pio2_1 = 1.57079632673412561417e+00,                   /* first 33 bits of pi / 2 */
+    pio2_1t = 6.07710050650619224932e-11,                  /* pi / 2 - pio2_1 */
+    shift = 6755399441055744.0;                            /* 1.5 * 2^52: rounds to an integer */
+  for (int p = 0; p < np; p++) {
+    double xp = x[p]; /* |x| >= 1e5, inf, NaN: garbage here, replaced below */
+    double n = (xp * two_pi + shift) - shift;
+    double r = (xp - n * pio2_1) - n * pio2_1t, z = r * r;
+    double sr = r + r * z * (-1.0 / 6 + z * (1.0 / 120 + z * (-1.0 / 5040 + z * (1.0 / 362880 +
+                z * (-1.0 / 39916800 + z * (1.0 / 6227020800 + z * (-1.0 / 1307674368000 +
+                z * (1.0 / 355687428096000))))))));
+    double vr = z * (0.5 + z * (-1.0 / 24 + z * (1.0 / 720 + z * (-1.0 / 40320 + z * (1.0 / 3628800 +
+                z * (-1.0 / 479001600 + z * (1.0 / 87178291200 + z * (-1.0 / 20922789888000 +
+                z * (1.0 / 6402373705728000)))))))));
+    double cr = 1.0 - vr;
+    /* the quadrant q = n mod 4 as n - 4 round(n / 4), in {-2, ..., 2}:
+     * q = 0: (cos, sin) = (cr, sr); 1: (-sr, cr); +-2: (-cr, -sr); -1: (sr, -cr),
+     * chosen by products with 0 / 1 indicators, polynomials in |q| exact on
+     * these integers (no branch and no division, so the loop vectorizes) */
+    double q = n - 4.0 * ((n * 0.25 + shift) - shift), aq = fabs(q);
+    double e0 = 0.5 * (1.0 - aq) * (2.0 - aq), odd = aq * (2.0 - aq), e2 = 0.5 * aq * (aq - 1.0);
+    double e1 = 0.5 * odd * (1.0 + q), em1 = 0.5 * odd * (1.0 - q);
+    double cp = odd * sr + (1.0 - odd) * cr, sp = odd * cr + (1.0 - odd) * sr;
+    double cq = cp * (1.0 - 2.0 * (e1 + e2)), sq = sp * (1.0 - 2.0 * (em1 + e2));
+    c[p] = cq;
+    s[p] = sq;
+    v[p] = e0 * vr + (1.0 - e0) * (1.0 - cq);
+  }
+  for (int p = 0; p < np; p++)
+    if (!(fabs(x[p]) < 1e5)) {
+      s[p] = sin(x[p]);
+      c[p] = cos(x[p]);
+      v[p] = 1.0 - c[p];
+    }
+}
+
+/* For the points of a block: x[m BLK + p] = 1 - cos(m ph_p) (vers) or
+ * cos(m ph_p), s[m BLK + p] = sin(m ph_p), m = 0 .. mmax, by the addition
+ * theorem (the versine form has no cancellation for small ph), restarted
+ * from sincos_v every 8 steps so that rounding does not grow with m. */
+MFS_CLONES static void phase_table(int np, const double *ph, int mmax, int vers, double *x,
+                                   double *s)
+{
+  double c1[BLK], v1[BLK], s1[BLK], mp[BLK], cc[BLK], vv[BLK];
+  for (int p = 0; p < np; p++) {
+    x[p] = vers ? 0.0 : 1.0;
+    s[p] = 0.0;
+  }
+  if (mmax < 1)
+    return;
+  sincos_v(np, ph, c1, v1, s1);
+  for (int p = 0; p < np; p++) {
+    x[BLK + p] = vers ? v1[p] : c1[p];
+    s[BLK + p] = s1[p];
+  }
+  for (int m = 2; m <= mmax; m++) {
+    double *xm = x + m * BLK, *sm = s + m * BLK;
+    const double *xa = xm - BLK, *sa = sm - BLK;
+    if ((m & 7) == 0) {
+      for (int p = 0; p < np; p++)
+        mp[p] = m * ph[p];
+      sincos_v(np, mp, cc, vv, sm);
+      for (int p = 0; p < np; p++)
+        xm[p] = vers ? vv[p] : cc[p];
+    } else if (vers) {
+      for (int p = 0; p < np; p++) {
+        xm[p] = (xa[p] + v1[p]) - (xa[p] * v1[p] - sa[p] * s1[p]);
+        sm[p] = (sa[p] + s1[p]) - (sa[p] * v1[p] + xa[p] * s1[p]);
+      }
+    } else {
+      for (int p = 0; p < np; p++) {
+        xm[p] = xa[p] * c1[p] - sa[p] * s1[p];
+        sm[p] = sa[p] * c1[p] + xa[p] * s1[p];
+      }
+    }
+  }
+}
+
+enum { FOLD_TAB = 64 }; /* phase tables on the stack up to |m| = 64; beyond, a sincos per offset */
+enum { OCHUNK = 32 };   /* offsets whose phases are formed at a time */
+
+/* The folded sums of L wave vectors (L = 1 or BLK, a constant where it is
+ * inlined, so that the accumulators stay in registers), of phases ph1 =
+ * k.a1, ph2 = k.a2 (1D: ph2 = 0), all long waves (vers: every phase of the
+ * terms within pi/2, the versine form) or none (the cosine form): re[c BLK +
+ * p] + i im[c BLK + p] for the raw components c of the plan (imaginary parts
+ * only if want_im; zero otherwise).  Reads the plan only; no allocation. */
+static MFS_INLINE void fold_lanes(const mfs_disp_plan *dp, const int L, const double *ph1,
+                                  const double *ph2, int vers, int want_im, double *re, double *im)
+{
+  double x1[(FOLD_TAB + 1) * BLK], s1[(FOLD_TAB + 1) * BLK];
+  double x2[(2 * FOLD_TAB + 1) * BLK], s2[(2 * FOLD_TAB + 1) * BLK];
+  double X[OCHUNK * BLK], S[OCHUNK * BLK], t[BLK], cc[BLK], vv[BLK];
+  double accs[MFS_DISP_NC * BLK], acca[MFS_DISP_NC * BLK];
+  const int two = dp->spec.disc.dim > 1, m = dp->mij < FOLD_TAB ? dp->mij : FOLD_TAB;
+  const int ns = dp->nsym, na = want_im ? dp->nanti : 0;
+  phase_table(L, ph1, m, vers, x1, s1);
+  if (two) {
+    phase_table(L, ph2, m, vers, x2 + FOLD_TAB * BLK, s2 + FOLD_TAB * BLK);
+    for (int q = 1; q <= m; q++)
+      for (int p = 0; p < L; p++) {
+        x2[(FOLD_TAB - q) * BLK + p] = x2[(FOLD_TAB + q) * BLK + p];
+        s2[(FOLD_TAB - q) * BLK + p] = -s2[(FOLD_TAB + q) * BLK + p];
+      }
+  }
+  for (int c = 0; c < ns * BLK; c++)
+    accs[c] = 0.0;
+  for (int c = 0; c < na * BLK; c++)
+    acca[c] = 0.0;
+  for (size_t o0 = 0; o0 < dp->no; o0 += OCHUNK) {
+    const int no = dp->no - o0 < OCHUNK ? (int)(dp->no - o0) : OCHUNK;
+    const double *Xp[OCHUNK], *Sp[OCHUNK]; /* the phase factors of the chunk's offsets */
+    for (int q = 0; q < no; q++) {
+      const int i = dp->oi[o0 + q], j = dp->oj[o0 + q];
+      double *Xq = X + q * BLK, *Sq = S + q * BLK;
+      Xp[q] = Xq;
+      Sp[q] = Sq;
+      if (i > m || j > m || j < -m) {
+        for (int p = 0; p < L; p++)
+          t[p] = i * ph1[p] + j * ph2[p];
+        sincos_v(L, t, cc, vv, Sq);
+        for (int p = 0; p < L; p++)
+          Xq[p] = vers ? vv[p] : cc[p];
+      } else if (!two) { /* the tables themselves */
+        Xp[q] = x1 + i * BLK;
+        Sp[q] = s1 + i * BLK;
+      } else { /* the angle sum i ph1 + j ph2 */
+        const double *a = x1 + i * BLK, *sa = s1 + i * BLK;
+        const double *b = x2 + (FOLD_TAB + j) * BLK, *sb = s2 + (FOLD_TAB + j) * BLK;
+        if (vers)
+          for (int p = 0; p < L; p++) {
+            Xq[p] = (a[p] + b[p]) - (a[p] * b[p] - sa[p] * sb[p]);
+            Sq[p] = (sa[p] + sb[p]) - (sa[p] * b[p] + a[p] * sb[p]);
+          }
+        else
+          for (int p = 0; p < L; p++) {
+            Xq[p] = a[p] * b[p] - sa[p] * sb[p];
+            Sq[p] = sa[p] * b[p] + a[p] * sb[p];
+          }
+      }
+    }
+    /* the sums over the chunk's offsets in order: one lane a component at a
+     * time (a register), BLK lanes an offset at a time (vectors over the
+     * lanes); the same additions in the same order either way */
+    const double *sy = dp->sym + o0 * (size_t)ns, *an = dp->anti + o0 * (size_t)dp->nanti;
+    if (L == 1) {
+      for (int c = 0; c < ns; c++) {
+        double acc = accs[c * BLK];
+        for (int q = 0; q < no; q++)
+          acc += sy[q * ns + c] * Xp[q][0];
+        accs[c * BLK] = acc;
+      }
+      for (int c = 0; c < na; c++) {
+        double acc = acca[c * BLK];
+        for (int q = 0; q < no; q++)
+          acc += an[q * dp->nanti + c] * Sp[q][0];
+        acca[c * BLK] = acc;
+      }
+    } else {
+      for (int q = 0; q < no; q++) {
+        for (int c = 0; c < ns; c++) {
+          const double w = sy[q * ns + c];
+#pragma GCC unroll 1
+          for (int p = 0; p < BLK; p++)
+            accs[c * BLK + p] += w * Xp[q][p];
+        }
+        for (int c = 0; c < na; c++) {
+          const double w = an[q * dp->nanti + c];
+#pragma GCC unroll 1
+          for (int p = 0; p < BLK; p++)
+            acca[c * BLK + p] += w * Sp[q][p];
+        }
+      }
+    }
+  }
+  /* Re = c0 - sum sym vers (long waves) or c(0) + sum sym cos; the
+   * components not kept: their sums at k = 0; imaginary parts not kept: 0 */
+  const double *base = vers ? dp->c0 : dp->corig;
+  for (int k = 0; k < dp->nc; k++)
+    for (int p = 0; p < L; p++) {
+      re[k * BLK + p] = base[k];
+      im[k * BLK + p] = 0.0;
+    }
+  for (int c = 0; c < ns; c++) {
+    const int k = dp->csym[c];
+    for (int p = 0; p < L; p++)
+      re[k * BLK + p] = vers ? base[k] - accs[c * BLK + p] : base[k] + accs[c * BLK + p];
+  }
+  for (int c = 0; c < na; c++) {
+    const int k = dp->canti[c];
+    for (int p = 0; p < L; p++)
+      im[k * BLK + p] = acca[c * BLK + p];
+  }
+}
+
+/* A block of np <= BLK wave vectors: all BLK lanes computed (the unused ones
+ * at phase 0), or one lane. */
+MFS_CLONES static void fold_block(const mfs_disp_plan *dp, int np, const double *ph1,
+                                  const double *ph2,
+                       int vers, int want_im, double *re, double *im)
+{
+  if (np == 1) {
+    fold_lanes(dp, 1, ph1, ph2, vers, want_im, re, im);
+    return;
+  }
+  double p1[BLK], p2[BLK];
+  for (int p = 0; p < BLK; p++) {
+    p1[p] = p < np ? ph1[p] : 0.0;
+    p2[p] = p < np ? ph2[p] : 0.0;
+  }
+  fold_lanes(dp, BLK, p1, p2, vers, want_im, re, im);
+}
+
+/* Long waves (the versine form): every phase of the terms within pi/2. */
+static int long_wave(const mfs_disp_plan *dp, double ph1, double ph2)
+{
+  return dp->mij * (fabs(ph1) + fabs(ph2)) <= M_PI_2;
+}
+
+/* The sums of point p of a block. */
+static void block_sums(const mfs_disp_plan *dp, const double *re, const double *im, int p,
+                       raw_sums *ps)
+{
+  for (int c = 0; c < dp->nc; c++)
+    ps->s[c] = CMPLX(re[c * BLK + p], im[c * BLK + p]);
+}
+
+/* The folded sums at one wave vector. */
+static void fold_eval(const mfs_disp_plan *dp, double ph1, double ph2, int want_im, raw_sums *ps)
+{
+  double re[MFS_DISP_NC * BLK], im[MFS_DISP_NC * BLK];
+  fold_block(dp, 1, &ph1, &ph2, long_wave(dp, ph1, ph2), want_im, re, im);
+  block_sums(dp, re, im, 0, ps);
+}
+
+/* The phases k.a1, k.a2 of a wave vector k (1/dx). */
+static void phases(const mfs_disp_plan *dp, const double *k, double *ph1, double *ph2)
+{
+  if (dp->spec.disc.dim == 1) {
+    *ph1 = k[0] * dp->a1[0];
+    *ph2 = 0.0;
+    return;
+  }
+  *ph1 = k[0] * dp->a1[0] + k[1] * dp->a1[1];
+  *ph2 = k[0] * dp->a2[0] + k[1] * dp->a2[1];
+}
+
+/* What one stress needs: the scalar coefficients, or the plane-strain state. */
+typedef struct {
+  double ca, cg;
+  mfs_plane_state ps;
+} disp_stress;
+
+static mfs_status stress_at(const mfs_disp_plan *dp, double sbar, disp_stress *s)
+{
+  if (dp->plane)
+    return mfs_disp_state(dp, sbar, &s->ps);
+  scalar_coef(dp, sbar, &s->ca, &s->cg);
+  return MFS_OK;
+}
+
+/* omega^2 from the sums at one stress. */
+static mfs_status solve_at(const mfs_disp_plan *dp, const raw_sums *ps, const disp_stress *s,
+                           int herm, double complex *omega2)
+{
+  double complex K[16], M[16];
+  if (dp->plane)
+    plane_contract(dp, ps, &s->ps, K, M);
+  else
+    scalar_contract(dp, ps, s->ca, s->cg, K, M);
+  return eig_solve(dp->nbr, K, M, herm, omega2);
+}
+
+/* Imaginary parts are needed unless the problem is one Hermitian branch. */
+static int want_im(const mfs_disp_plan *dp)
+{
+  return !(hermitian(dp) && dp->nbr == 1);
+}
+
 mfs_status mfs_disp_omega2_state(const mfs_disp_plan *dp, const mfs_plane_state *s,
                                  const double *k, double complex *omega2)
 {
-  double complex K[16], M[16];
-  mfs_status st = mfs_disp_symbols_state(dp, s, k, K, M);
-  return st != MFS_OK ? st : eig_solve(dp->nbr, K, M, hermitian(dp), omega2);
+  return mfs_disp_omega2_states(dp, s, 1, k, omega2);
+}
+
+/* The wave vector kappa pi (cos theta, sin theta) of a ray (1D: kappa pi). */
+static void ray_k(const mfs_disp_plan *dp, double kappa, double c, double s, double *k)
+{
+  if (dp->spec.disc.dim == 1) {
+    k[0] = kappa * M_PI;
+    k[1] = 0.0;
+  } else {
+    k[0] = kappa * M_PI * c;
+    k[1] = kappa * M_PI * s;
+  }
 }
 
 mfs_status mfs_disp_omega2(const mfs_disp_plan *dp, double sbar, double kappa, double theta,
                            double complex *omega2)
 {
-  int n = dp->nbr;
-  double k[2] = {kappa * M_PI * cos(theta), kappa * M_PI * sin(theta)};
-  if (dp->spec.disc.dim == 1)
-    k[0] = kappa * M_PI, k[1] = 0.0;
-  double complex K[16], M[16];
-  mfs_status st = mfs_disp_symbols(dp, sbar, k, K, M);
-  if (st != MFS_OK)
-    return st;
-  return eig_solve(n, K, M, hermitian(dp), omega2);
+  return mfs_disp_ray(dp, &sbar, 1, theta, &kappa, 1, omega2, 0);
+}
+
+enum { RAY_STRESSES = 16 }; /* stresses per pass over a ray */
+
+/* The status of the first failure in the order (stress, point). */
+typedef struct {
+  mfs_status st;
+  size_t s, i;
+} first_fail;
+
+static void note_fail(first_fail *f, mfs_status st, size_t s, size_t i)
+{
+  if (f->st == MFS_OK || s < f->s || (s == f->s && i < f->i))
+    *f = (first_fail){.st = st, .s = s, .i = i};
+}
+
+/* Evaluate the points idx[0..np) of phases ph1, ph2, all of one form (vers),
+ * at the stresses at[0..ns) (of stress index s0 on), into omega2 (the ray's
+ * layout, stresses ld apart); failures noted in *first. */
+static void ray_block(const mfs_disp_plan *dp, int np, const size_t *idx, const double *ph1,
+                      const double *ph2, int vers, const disp_stress *at, size_t s0, size_t ns,
+                      size_t ld, double complex *omega2, first_fail *first)
+{
+  double re[MFS_DISP_NC * BLK], im[MFS_DISP_NC * BLK];
+  const int nb = dp->nbr, herm = hermitian(dp);
+  fold_block(dp, np, ph1, ph2, vers, want_im(dp), re, im);
+  for (size_t q = 0; q < ns; q++) {
+    if (nb == 1 && !dp->plane) { /* one scalar branch: solve1 of scalar_contract, over the lanes */
+      double wr[BLK], wi[BLK];
+      const double ca = at[q].ca, cg = at[q].cg;
+      for (int p = 0; p < np; p++) { /* K / m for a real m (the lumped mass) */
+        wr[p] = (ca * re[p] + cg * re[BLK + p]) / re[2 * BLK + p];
+        wi[p] = herm ? 0.0 : (ca * im[p] + cg * im[BLK + p]) / re[2 * BLK + p];
+      }
+      for (int p = 0; p < np; p++) {
+        double complex *w = omega2 + (s0 + q) * ld + idx[p] * (size_t)nb;
+        mfs_status e = MFS_OK;
+        if (re[2 * BLK + p] == 0.0 || im[2 * BLK + p] != 0.0) { /* the general case */
+          double complex K = CMPLX(ca * re[p] + cg * re[BLK + p], ca * im[p] + cg * im[BLK + p]);
+          e = solve1(K, CMPLX(re[2 * BLK + p], im[2 * BLK + p]), herm, w);
+        } else if (isfinite(wr[p]) && isfinite(wi[p])) {
+          *w = CMPLX(wr[p], wi[p]);
+        } else {
+          e = MFS_EDOMAIN;
+        }
+        if (e != MFS_OK) {
+          *w = CMPLX(NAN, NAN);
+          note_fail(first, e, s0 + q, idx[p]);
+        }
+      }
+      continue;
+    }
+    for (int p = 0; p < np; p++) {
+      double complex *w = omega2 + (s0 + q) * ld + idx[p] * (size_t)nb;
+      raw_sums ps;
+      block_sums(dp, re, im, p, &ps);
+      mfs_status e = solve_at(dp, &ps, at + q, herm, w);
+      if (e != MFS_OK) {
+        for (int k = 0; k < nb; k++)
+          w[k] = CMPLX(NAN, NAN);
+        note_fail(first, e, s0 + q, idx[p]);
+      }
+    }
+  }
+}
+
+/* omega^2 at n points at the stresses at[0..ns) (stress index s0 on): the
+ * wave vectors k[2 i .. 2 i + 1], or kappa[i] along (c, s) = (cos, sin)
+ * theta; BLK consecutive points at a time, split by form (long or short
+ * waves) where a block has both. */
+static void eval_points(const mfs_disp_plan *dp, const disp_stress *at, size_t s0, size_t ns,
+                        size_t n, const double *k, const double *kappa, double c, double s,
+                        double complex *omega2, size_t ld, first_fail *first)
+{
+  for (size_t i0 = 0; i0 < n; i0 += BLK) {
+    const int np = n - i0 < BLK ? (int)(n - i0) : BLK;
+    double ph1[BLK], ph2[BLK];
+    size_t idx[BLK];
+    int lw[BLK], nlw = 0;
+    for (int p = 0; p < np; p++) {
+      double kk[2];
+      if (k) {
+        kk[0] = k[2 * (i0 + p)];
+        kk[1] = k[2 * (i0 + p) + 1];
+      } else {
+        ray_k(dp, kappa[i0 + p], c, s, kk);
+      }
+      phases(dp, kk, ph1 + p, ph2 + p);
+      lw[p] = long_wave(dp, ph1[p], ph2[p]);
+      nlw += lw[p];
+      idx[p] = i0 + (size_t)p;
+    }
+    if (nlw == 0 || nlw == np) {
+      ray_block(dp, np, idx, ph1, ph2, nlw > 0, at, s0, ns, ld, omega2, first);
+      continue;
+    }
+    for (int form = 0; form < 2; form++) { /* a block with both forms: each on its own */
+      double q1[BLK], q2[BLK];
+      size_t qi[BLK];
+      int nq = 0;
+      for (int p = 0; p < np; p++)
+        if (lw[p] == form) {
+          q1[nq] = ph1[p];
+          q2[nq] = ph2[p];
+          qi[nq++] = idx[p];
+        }
+      ray_block(dp, nq, qi, q1, q2, form, at, s0, ns, ld, omega2, first);
+    }
+  }
+}
+
+mfs_status mfs_disp_ray(const mfs_disp_plan *dp, const double *sbar, size_t nsbar, double theta,
+                        const double *kappa, size_t n, double complex *omega2, size_t ld)
+{
+  const double c = cos(theta), s = sin(theta);
+  if (ld == 0)
+    ld = n * (size_t)dp->nbr;
+  first_fail first = {.st = MFS_OK};
+  for (size_t s0 = 0; s0 < nsbar; s0 += RAY_STRESSES) {
+    size_t ns = nsbar - s0 < RAY_STRESSES ? nsbar - s0 : RAY_STRESSES;
+    disp_stress at[RAY_STRESSES];
+    for (size_t q = 0; q < ns; q++) {
+      mfs_status e = stress_at(dp, sbar[s0 + q], at + q);
+      if (e != MFS_OK)
+        return e;
+    }
+    eval_points(dp, at, s0, ns, n, NULL, kappa, c, s, omega2, ld, &first);
+  }
+  return first.st;
+}
+
+mfs_status mfs_disp_omega2_states(const mfs_disp_plan *dp, const mfs_plane_state *s, size_t n,
+                                  const double *k, double complex *omega2)
+{
+  if (!dp->plane || !s || !same_stretch(dp, s))
+    return MFS_EINVAL;
+  disp_stress at = {.ps = *s};
+  first_fail first = {.st = MFS_OK};
+  eval_points(dp, &at, 0, 1, n, k, NULL, 0.0, 0.0, omega2, n * (size_t)dp->nbr, &first);
+  return first.st;
 }
 
 mfs_status mfs_disp_longwave(const mfs_disp_plan *dp, double sbar, double theta, double *q)
@@ -668,7 +1305,7 @@ void mfs_disp_current_k(const mfs_disp_plan *dp, const double *k, double *kc)
 struct mfs_disp_sample {
   const mfs_disp_plan *pl;
   size_t nk;
-  plane_sums *s;
+  raw_sums *s;
 };
 
 mfs_disp_sample *mfs_disp_sample_alloc(const mfs_disp_plan *pl, size_t nk, const double *k,
@@ -684,8 +1321,11 @@ mfs_disp_sample *mfs_disp_sample_alloc(const mfs_disp_plan *pl, size_t nk, const
     goto done;
   s->pl = pl;
   s->nk = nk;
-  for (size_t i = 0; i < nk; i++)
-    plane_sum(pl, k + 2 * i, s->s + i);
+  for (size_t i = 0; i < nk; i++) { /* the folded sums, as mfs_disp_omega2_state */
+    double ph1, ph2;
+    phases(pl, k + 2 * i, &ph1, &ph2);
+    fold_eval(pl, ph1, ph2, want_im(pl), s->s + i);
+  }
   st = MFS_OK;
 done:
   if (st != MFS_OK) {

@@ -111,11 +111,31 @@ int mfs_disp_is_reciprocal(const mfs_disp_plan *pl, const double *k, double tol)
  * symmetric operators (Lagrangian) and may be complex otherwise.  With a
  * finite material the state is the plan's and sbar must be 0.
  * Returns MFS_OK, MFS_ELAPACK, MFS_EINVAL (sbar with a finite material), or
- * MFS_EDOMAIN if the mass symbol is singular. */
+ * MFS_EDOMAIN if the mass symbol is singular (omega2 is then NaN).
+ * How: the plan keeps the lattice sums folded over pairs of opposite offsets
+ * d = i a1 + j a2, sum_t c_t e^{ik.d_t} = sum_t c_t - sum_o (c_o + c_-o)
+ * (1 - cos k.d_o) + i sum_o (c_o - c_-o) sin k.d_o, with 1 - cos(m k.a) and
+ * sin(m k.a) from tables built by the addition theorem per wave vector; the
+ * 1 x 1 and lumped 2 x 2 eigenproblems in closed form. */
 mfs_status mfs_disp_omega2(const mfs_disp_plan *pl, double sbar, double kappa, double theta,
                            double _Complex *omega2);
 
-/* Symbols at one wave vector, for checks: K(k) and M(k), nb x nb row-major. */
+/* omega^2 along a ray: at the wave numbers kappa[0..n) (kappa dx / pi) in
+ * direction theta and each stress sbar[0..nsbar), into omega2[s ld + i nb +
+ * b] (nb = mfs_disp_branches; ld >= n nb, or 0 for n nb), the same values as
+ * mfs_disp_omega2 point by point, bit for bit; the lattice sums of a wave
+ * vector serve all the stresses.  Every point is computed on its own from the plan (which is only
+ * read; nothing is allocated), so calls may run in parallel on one plan and
+ * a ray split into pieces gives the same bits.  MFS_OK, or the status of the
+ * first failing point in the order (stress, kappa) (MFS_EDOMAIN, MFS_ELAPACK:
+ * the values of failing points are NaN, the others are computed), or of a
+ * stress (MFS_EINVAL, as mfs_disp_omega2: nothing computed). */
+mfs_status mfs_disp_ray(const mfs_disp_plan *pl, const double *sbar, size_t nsbar, double theta,
+                        const double *kappa, size_t n, double _Complex *omega2, size_t ld);
+
+/* Symbols at one wave vector, for checks: K(k) and M(k), nb x nb row-major,
+ * summed term by term with a sincos per lattice offset (the reference the
+ * folded sums of mfs_disp_omega2 are tested against). */
 mfs_status mfs_disp_symbols(const mfs_disp_plan *pl, double sbar, const double *k,
                             double _Complex *K, double _Complex *M);
 
@@ -133,6 +153,13 @@ mfs_status mfs_disp_symbols_state(const mfs_disp_plan *pl, const mfs_plane_state
                                   const double *k, double _Complex *K, double _Complex *M);
 mfs_status mfs_disp_omega2_state(const mfs_disp_plan *pl, const mfs_plane_state *s,
                                  const double *k, double _Complex *omega2);
+
+/* mfs_disp_omega2_state at n wave vectors k[2 i .. 2 i + 1] into omega2[i nb
+ * .. i nb + nb - 1], the same bits point by point, evaluated in blocks (as
+ * mfs_disp_ray); reads the plan only.  MFS_OK, MFS_EINVAL as above, or the
+ * status of the first failing point (its values NaN). */
+mfs_status mfs_disp_omega2_states(const mfs_disp_plan *pl, const mfs_plane_state *s, size_t n,
+                                  const double *k, double _Complex *omega2);
 
 /* The continuum's long-wave limit: omega^2 / kappa^2 as kappa -> 0 along
  * theta, for each of the ndof polarizations (ascending): the eigenvalues of

@@ -321,3 +321,25 @@ fail:
     *status = MFS_ENOMEM;
   return NULL;
 }
+
+mfs_status mfs_nlist_rebuild(int dim, size_t n, const double *x, const mfs_box *box, size_t nq,
+                             const double *xq, double r, mfs_nlist **lists, size_t *maxlen)
+{
+  mfs_status st;
+  mfs_grid *g = mfs_grid_alloc(dim, n, x, box, r, &st);
+  if (!g)
+    return st;
+  mfs_nlist *nl = mfs_nlist_build(g, nq, xq, r, &st);
+  mfs_grid_free(g);
+  if (!nl)
+    return st;
+  mfs_nlist_free(*lists);
+  *lists = nl;
+  size_t m = 1;
+  for (size_t Q = 0; Q < nq; Q++) {
+    size_t len = nl->ptr[Q + 1] - nl->ptr[Q];
+    m = len > m ? len : m;
+  }
+  *maxlen = m;
+  return MFS_OK;
+}

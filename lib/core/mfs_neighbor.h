@@ -46,6 +46,14 @@ typedef struct {
 mfs_nlist *mfs_nlist_build(const mfs_grid *g, size_t nq, const double *xq, double r, mfs_status *status);
 void mfs_nlist_free(mfs_nlist *nl);
 
+/* The search of a moving discretization: the lists of the n points x (dim
+ * coordinates each, in box) within r of each of the nq query points xq,
+ * through a grid built and dropped; on success *lists (freed) is replaced
+ * and *maxlen is the longest list (at least 1).  MFS_OK, the statuses of
+ * mfs_grid_alloc and mfs_nlist_build (then *lists is unchanged). */
+mfs_status mfs_nlist_rebuild(int dim, size_t n, const double *x, const mfs_box *box, size_t nq,
+                             const double *xq, double r, mfs_nlist **lists, size_t *maxlen);
+
 /* The transpose: for each of n points, the queries whose lists hold it. */
 mfs_nlist *mfs_nlist_transpose(const mfs_nlist *nl, size_t n, mfs_status *status);
 

@@ -106,6 +106,14 @@ typedef struct {
 mfs_particles *mfs_lattice_alloc(const mfs_lattice_spec *spec, mfs_status *status);
 void mfs_particles_free(mfs_particles *p);
 
+/* The lattice's area (1D: length) per node, dx dy (1D dx): the node volume
+ * of eq. 119 of paper 003, the same for every node, where vol[] is each
+ * node's share of its cells (unequal on the star pattern). */
+static inline double mfs_particles_node_volume(const mfs_particles *p)
+{
+  return p->dim == 1 ? p->dx : p->dx * p->dy;
+}
+
 /* A particle set given as arrays, borrowed (a user's file). */
 typedef struct {
   int dim;            /* 1 or 2 */

@@ -446,10 +446,14 @@ mfs_status mfs_assemble_mass_lumped(const mfs_plan *pl, const mfs_material *mat,
   int ndof = mfs_physics_ndof(mat->physics);
   for (size_t i = 0; i < p->n * ndof; i++)
     m[i] = 0.0;
-  if (!mfs_plan_disc(pl)->shape->partition_of_unity) { /* particle masses rho V_I (eq. 51) */
+  const mfs_disc *d = mfs_plan_disc(pl);
+  if (!d->shape->partition_of_unity || d->node_volume_mass) {
+    /* particle masses rho V_I (SPH, eq. 51), or rho times the lattice's area per node
+     * (eq. 119's node volume, asked for) */
     for (size_t I = 0; I < p->n; I++)
       for (int k = 0; k < ndof; k++)
-        m[I * ndof + k] = mat->density * p->vol[I];
+        m[I * ndof + k] = mat->density * (d->node_volume_mass ? mfs_particles_node_volume(p)
+                                                               : p->vol[I]);
     return MFS_OK;
   }
   if (mfs_plan_order(pl) < 1)

@@ -32,6 +32,7 @@ mfs_disc mfs_disc_default(void)
                     .quadrature = &mfs_quad_nodal,
                     .frame = MFS_FRAME_LAGRANGIAN,
                     .consistent_mass = 0,
+                    .node_volume_mass = 0,
                     .material = {.physics = MFS_PHYS_SCALAR,
                                  .modulus = 1.0,
                                  .poisson = 0.25,
@@ -176,6 +177,8 @@ mfs_status mfs_disc_check(const mfs_disc *d, const char **field)
     BAD("material.initial_stress");
   if (!(d->rcond_min >= 0.0) || !(d->rcond_min < 1.0))
     BAD("rcond_min");
+  if (d->node_volume_mass && d->consistent_mass)
+    BAD("node_volume_mass");
   if (s->nx > 0 && s->periodic && !s->points) {
     /* the star pattern tiles a periodic box only with even counts */
     if (d->quadrature->cells == MFS_CELLS_STAR && d->dim == 2 && ((s->nx & 1) || (s->ny & 1)))
@@ -260,6 +263,22 @@ mfs_status mfs_disc_periodic_box(const mfs_disc *d, int nx, int ny, mfs_particle
                          .periodic = 1,
                          .cells = d->quadrature->cells};
   return build(d, &ls, p, q);
+}
+
+double mfs_disc_model_bytes(const mfs_disc *d, double n)
+{
+  double points, entries = mfs_disc_plan_entries(d, n, &points);
+  int dim = d->dim, ncomp = d->material.physics == MFS_PHYS_PLANE_STRAIN ? 2 : 1;
+  /* the plan: an index and the values and gradients per entry */
+  double plan = entries * (4.0 + 8.0 * (1 + dim));
+  /* K (and a consistent M): the particles within 2a of each, ncomp^2 each, 12 bytes a nonzero */
+  double D2 = 2.0 * d->dilation, gamma = d->source.gamma > 0.0 ? d->source.gamma : 1.0;
+  double row = dim == 1 ? 2.0 * D2 + 1.0 : M_PI * D2 * D2 / gamma + 1.0;
+  if (row > n)
+    row = n;
+  double nnz = n * ncomp * ncomp * row;
+  double mats = 12.0 * nnz * (d->consistent_mass ? 2.0 : 1.0);
+  return plan + mats + 64.0 * n * ncomp; /* and a few vectors */
 }
 
 double mfs_disc_plan_entries(const mfs_disc *d, double n, double *points)

@@ -14,7 +14,8 @@
  *   shape       shape functions (mfs_shape.h)
  *   quadrature  the rule (mfs_quad.h)
  *   frame       Lagrangian or Eulerian kernel (paper 003 section 3.4)
- *   mass        lumped (row sum, eq. 131) or consistent (eq. 112)
+ *   mass        lumped (row sum, eq. 131), consistent (eq. 112), or lumped as
+ *               rho times the node volume (node_volume_mass: eq. 119's mass)
  *   material    physics and elastic constants (mfs_material.h)
  *
  * Fill it with designated initializers, starting from mfs_disc_default().
@@ -72,6 +73,8 @@ typedef struct {
   const mfs_quad_type *quadrature;
   mfs_frame frame;
   int consistent_mass;             /* 0: lumped (row sum, eq. 131) */
+  int node_volume_mass;            /* lumped as rho times the node volume (eq. 119's mass)
+                                      instead of the row sum; not with consistent_mass */
   mfs_material material;
   double rcond_min;                /* singular moment matrix threshold (0: 1e-12) */
 } mfs_disc;
@@ -121,6 +124,12 @@ double mfs_disc_rcond(const mfs_disc *d);
  * cent; for limits on the work before anything is built.  In doubles: no
  * overflow for absurd inputs. */
 double mfs_disc_plan_entries(const mfs_disc *d, double n, double *points);
+
+/* An estimate of the peak memory, in bytes, of a finite model of d on n
+ * particles (its plan, its stiffness and consistent mass, a few vectors):
+ * within a factor of about 1.5 of the measured peak; for a refusal before
+ * the machine runs out of memory. */
+double mfs_disc_model_bytes(const mfs_disc *d, double n);
 
 /* The particles and quadrature points of a finite source (the lattice of
  * the box, cut as the rule needs, perturbed as the source says; or the

@@ -107,3 +107,23 @@ mfs_status mfs_eval_point_general(mfs_eval *ev, const double *x, const double *x
     *rcond = rc;
   return st;
 }
+
+mfs_status mfs_eval_grow(mfs_eval *ev, size_t need, int stride, double **out, int **loc,
+                         size_t *cap)
+{
+  if (need <= *cap)
+    return MFS_OK;
+  size_t c = 2 * need;
+  double *o = mfs_realloc(*out, (size_t)stride * c * sizeof *o);
+  if (!o)
+    return MFS_ENOMEM;
+  *out = o;
+  int *l = mfs_realloc(*loc, c * sizeof *l);
+  if (!l)
+    return MFS_ENOMEM;
+  *loc = l;
+  if (mfs_eval_reserve(ev, c) != MFS_OK)
+    return MFS_ENOMEM;
+  *cap = c;
+  return MFS_OK;
+}

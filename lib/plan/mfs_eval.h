@@ -56,6 +56,13 @@ void mfs_eval_fast(mfs_eval *ev, int on);
 /* Room for cap neighbours.  MFS_OK or MFS_ENOMEM (the old room kept). */
 mfs_status mfs_eval_reserve(mfs_eval *ev, size_t cap);
 
+/* Room for `need` neighbours in the evaluator and in a caller's table *out
+ * (stride doubles a neighbour) and indices *loc, whose room is *cap: when
+ * need exceeds it, all three grow to twice need.  MFS_OK or MFS_ENOMEM
+ * (whatever was grown stays valid; *cap unchanged). */
+mfs_status mfs_eval_grow(mfs_eval *ev, size_t need, int stride, double **out, int **loc,
+                         size_t *cap);
+
 /* Shape functions at x (dim coordinates) from the candidates cand[0..nc)
  * of the particles xp (dim coordinates each) with volumes vol (read only if
  * the shape uses them): keeps those with |X_J - x| < a, writes their

@@ -84,37 +84,13 @@ static int force_lagrangian(mfs_solver *s, const double *u, double *f)
 static int search(mfs_solver *s)
 {
   mfs_solver_work *w = s->w;
-  mfs_status st;
-  mfs_grid *g = mfs_grid_alloc(1, s->n, w->x, &w->p->box, w->a + w->skin, &st);
-  if (!g)
+  size_t maxrow;
+  mfs_status st = mfs_nlist_rebuild(1, s->n, w->x, &w->p->box, s->nq, w->xq, w->a + w->skin,
+                                    &w->cand, &maxrow);
+  if (st == MFS_OK)
+    st = mfs_eval_grow(&w->ev, maxrow, 2, &w->out, &w->loc, &w->cap);
+  if (st != MFS_OK)
     return st;
-  mfs_nlist *nl = mfs_nlist_build(g, s->nq, w->xq, w->a + w->skin, &st);
-  mfs_grid_free(g);
-  if (!nl)
-    return st;
-  mfs_nlist_free(w->cand);
-  w->cand = nl;
-  size_t maxrow = 1;
-  for (size_t Q = 0; Q < s->nq; Q++) {
-    size_t len = nl->ptr[Q + 1] - nl->ptr[Q];
-    maxrow = len > maxrow ? len : maxrow;
-  }
-  if (maxrow > w->cap) {
-    size_t cap = 2 * maxrow;
-    /* each block kept as soon as it is grown (realloc has freed the old
-     * one); cap, their common size, only when all three are */
-    double *o = mfs_realloc(w->out, 2 * cap * sizeof *o);
-    if (!o)
-      return MFS_ENOMEM;
-    w->out = o;
-    int *l = mfs_realloc(w->loc, cap * sizeof *l);
-    if (!l)
-      return MFS_ENOMEM;
-    w->loc = l;
-    if (mfs_eval_reserve(&w->ev, cap) != MFS_OK)
-      return MFS_ENOMEM;
-    w->cap = cap;
-  }
   memcpy(w->xb, w->x, s->n * sizeof *w->x);
   memcpy(w->xqb, w->xq, s->nq * sizeof *w->xq);
   s->searches++;
