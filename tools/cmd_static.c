@@ -151,6 +151,7 @@ static size_t parse_methods(const char *arg, const mfs_static_method **out)
   char *copy = mfs_strdup(arg);
   if (!copy)
     cli_die(1, "out of memory");
+  cli_on_die(mfs_free, copy); /* after the message, which quotes it */
   for (char *s = copy;;) {
     char *comma = strchr(s, ',');
     if (comma)
@@ -167,6 +168,7 @@ static size_t parse_methods(const char *arg, const mfs_static_method **out)
       break;
     s = comma + 1;
   }
+  cli_on_die_pop();
   mfs_free(copy);
   return n;
 }
@@ -177,6 +179,7 @@ static void parse_nodes(const char *arg, int beam, int *nx, int *ny)
   char *copy = mfs_strdup(arg);
   if (!copy)
     cli_die(1, "out of memory");
+  cli_on_die(mfs_free, copy);
   char *comma = strchr(copy, ',');
   if (comma)
     *comma = '\0';
@@ -195,6 +198,7 @@ static void parse_nodes(const char *arg, int beam, int *nx, int *ny)
     cli_die(2, "--nodes '%s': NY = %ld out of range; allowed %ld to %ld", arg, b, lo, hi);
   *nx = (int)a;
   *ny = beam ? (int)b : (int)a;
+  cli_on_die_pop();
   mfs_free(copy);
 }
 
