@@ -44,7 +44,11 @@ typedef struct {
   int support;
   long directions, wavenumbers;
   const char *out;
+  double max_evaluations;
 } map_opts;
+
+/* the default limit on a map's symbol evaluations (about 1 us each: a few minutes) */
+#define MAP_MAX_EVALUATIONS 2e8
 
 static const char *const support_names[] = {"volume", "reference", NULL};
 
@@ -78,6 +82,10 @@ static const cli_opt opts[] = {
   {.name = "--wavenumbers", .type = CLI_INT, .arg = "N",
    .help = "wave numbers per direction (default 64)", .offset = OFF(wavenumbers),
    .bounds = CLI_GE | CLI_LE, .lo = 1, .hi = 100000},
+  {.name = "--max-evaluations", .type = CLI_REAL, .arg = "N",
+   .help = "refuse a map of more than N symbol evaluations: grid points x dilations x frames x\n"
+           "(directions x wavenumbers + wavenumbers + 2) (default 2e8)",
+   .offset = OFF(max_evaluations), .bounds = CLI_GE | CLI_LE, .lo = 1, .hi = 1e15},
   {.name = "-o", .type = CLI_TEXT, .arg = "FILE",
    .help = "output file (default: standard output)", .offset = OFF(out)},
   {.type = CLI_END}};
@@ -368,6 +376,17 @@ int cmd_map(int argc, char **argv)
   /* workspaces per thread: zone samples (a per-state plan's own), all samples, omega^2 */
   size_t nz = (size_t)(o.directions * o.wavenumbers), nw = (size_t)o.wavenumbers + 2;
   size_t npt = (size_t)ng * (size_t)ng;
+  double evals = (double)npt * (double)ndil * (double)nfr * ((double)nz + (double)nw);
+  double elim = o.max_evaluations > 0.0 ? o.max_evaluations : MAP_MAX_EVALUATIONS;
+  if (!(evals <= elim))
+    cli_die(2,
+            "%s %s: about %.3g symbol evaluations (%.3g grid points x %zu dilation%s x %d frame%s "
+            "x %.3g wave vectors), more than --max-evaluations %.3g%s; a coarser grid, fewer "
+            "--directions or --wavenumbers, or raise --max-evaluations",
+            stretch_map ? "--stretch-range" : "--stress-range",
+            stretch_map ? o.stretch_range : o.stress_range, evals, (double)npt, ndil,
+            ndil == 1 ? "" : "s", nfr, nfr == 1 ? "" : "s", (double)(nz + nw), elim,
+            o.max_evaluations > 0.0 ? "" : " (the default)");
   int nthr = map_threads();
   map_work mw = {
     .kz = mfs_malloc(2 * nz * (size_t)nthr * sizeof *mw.kz),

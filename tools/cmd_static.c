@@ -46,6 +46,7 @@ typedef struct {
   const mfs_spsolve_type *solver;
   double solve_rcond_min;
   int ebc;
+  double max_entries;
 } static_opts;
 
 static const char *const ebc_names[] = {"lm", "ghost", NULL};
@@ -129,6 +130,10 @@ static const cli_opt opts[] = {
   {.name = "--solve-rcond-min", .type = CLI_REAL, .arg = "R",
    .help = "a system whose solver rcond estimate is below R is singular (default 1e-15)",
    .offset = OFF(solve_rcond_min), .bounds = CLI_GE | CLI_LT, .lo = 0, .hi = 1},
+  {.name = "--max-entries", .type = CLI_REAL, .arg = "N",
+   .help = "refuse a model of more than about N neighbour entries, integration points times "
+           "nodes in a support (default 5e8)",
+   .offset = OFF(max_entries), .bounds = CLI_GE | CLI_LE, .lo = 1, .hi = 1e15},
   {.name = "-o", .type = CLI_TEXT, .arg = "FILE",
    .help = "output file (default: standard output)", .offset = OFF(out)},
   {.type = CLI_END}};
@@ -171,6 +176,44 @@ static size_t parse_methods(const char *arg, const mfs_static_method **out)
   cli_on_die_pop();
   mfs_free(copy);
   return n;
+}
+
+/* The work of the largest model (the finest level of --refine, the ghost
+ * columns included): about (integration points) x (nodes in a support, pi D^2
+ * in 2D) neighbour entries, an integration point per node (nodal) or N^2 per
+ * cell (gaussN), for the method of the most points; or the entries of the
+ * stiffness matrix, 2 x 2 for each pair of nodes within two supports (16 pi
+ * D^2 a node), where that is more (the nodal methods).  Refused beyond
+ * --max-entries (default CLI_MAX_ENTRIES, as the plans of the other
+ * commands): a model of 3e8 nodes would otherwise run for hours. */
+static void check_work(const mfs_static_spec *s, const mfs_static_method **ms, size_t nm,
+                       const static_opts *o, const char *nodes_arg)
+{
+  double scale = o->refine > 1 ? (double)(1L << (o->refine - 1)) : 1.0;
+  double nx = (double)(s->nx - 1) * scale + 1.0 + (double)s->ghost;
+  double ny = (double)(s->ny - 1) * scale + 1.0;
+  double nodes = nx * ny;
+  double per_point = M_PI * s->dilation * s->dilation;
+  if (per_point < 1.0)
+    per_point = 1.0;
+  double worst = 16.0 * nodes * per_point; /* the stiffness */
+  const char *wm = ms[0]->name;
+  for (size_t k = 0; k < nm; k++) {
+    const mfs_quad_type *q = s->quadrature ? s->quadrature : ms[k]->quadrature;
+    double g = q && q->gauss_n > 0 ? (double)q->gauss_n : 1.0;
+    double e = nodes * g * g * per_point;
+    if (e > worst)
+      worst = e, wm = ms[k]->name;
+  }
+  double lim = o->max_entries > 0.0 ? o->max_entries : CLI_MAX_ENTRIES;
+  if (!(worst <= lim))
+    cli_die(2,
+            "--nodes %s: about %.3g neighbour entries (%.3g nodes%s, method %s, --dilation %g), "
+            "more than --max-entries %.3g%s; fewer nodes, levels or a smaller dilation, or raise "
+            "--max-entries",
+            nodes_arg ? nodes_arg : "(default)", worst, nodes,
+            o->refine > 1 ? " on the finest level" : "", wm, s->dilation, lim,
+            o->max_entries > 0.0 ? "" : " (the default)");
 }
 
 /* --nodes NX,NY (beam) or N (plate-hole). */
@@ -524,6 +567,7 @@ int cmd_static(int argc, char **argv)
       cli_die(2, "--refine %ld: the finest level would have %.3g nodes (more than 2e7); fewer levels",
               o.refine, fine * finey);
   }
+  check_work(&s, ms, nm, &o, o.nodes);
   cli_out out;
   cli_out_open(&out, o.out);
   if (o.patch)
