@@ -170,6 +170,8 @@ bad_cmd map --poisson "${SR[@]}" --poisson 0.3
 bad_cmd map --modulus "${SR[@]}" --modulus 1e5
 bad_cmd map --spacing --material neo-hookean "${SR[@]}" --spacing 0.01
 bad_cmd map --frame "${SR[@]}" --shape kb --frame eulerian-consistent
+bad_cmd map --max-evaluations "${SR[@]}" --max-evaluations 10
+bad_cmd map --max-evaluations "${SR[@]}" --max-evaluations 0
 bad_cmd map --gamma "${SR[@]}" --lattice hex --quadrature stress-hex --gamma 1.2
 # the example on a coarse grid: the Lagrangian stress-point domain is the PDE's
 mkdir -p "$tmp/res"
@@ -391,6 +393,9 @@ bad_cmd static --dilation --method mls --dilation 0.9
 bad_cmd static --dilation --method efg --dilation 0.9
 bad_cmd static --dilation --method jb --dilation 0.9
 bad_cmd static --dilation --method cd2 --nodes 3,2 --dilation 0.7
+bad_cmd static --max-entries --nodes 17,3 --max-entries 1e3
+bad_cmd static --max-entries --max-entries 0
+bad_cmd static --nodes --nodes 100000,3000
 bad_cmd static --dilation --dilation 0
 bad_cmd static --poisson --poisson 0.5
 bad_cmd static --young --young 0

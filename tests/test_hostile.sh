@@ -66,6 +66,16 @@ hostile 2 max_steps run "$tmp/tiny-dt.ini"
 hostile 2 end run "$S/gaussian-pulse.ini" --set time.end=1e30
 hostile 2 max_entries run "$S/plate-pulse-2d.ini" --set model.nodes=200 --set model.nodes_y=200 --set model.length_y=0.031 --set discretization.dilation=40
 hostile 2 --max-entries eigs --nodes 200000 --dilation 5000
+# static and map without a limit ran for hours: refused, naming the size and the override
+hostile 2 --nodes static --nodes 100000,3000
+hostile 2 --max-entries static --nodes 100000,3000
+hostile 2 --max-entries static --problem plate-hole --nodes 3000 --method sph
+hostile 2 --max-entries static --nodes 17,3 --refine 6 --max-entries 1e6
+hostile 2 --stretch-range map --stretch-range 0.5:1.5:100000
+hostile 2 --max-evaluations map --stretch-range 0.5:1.5:100000
+hostile 2 --max-evaluations map --stretch-range 0.5:1.5:3 --directions 10000 --wavenumbers 100000
+hostile 2 --max-evaluations map --stress-range -1:1:3 --max-evaluations 100
+hostile 0 --max-evaluations map --stress-range -1:1:3 --max-evaluations 1e4
 # more memory than the process may take (an address-space limit, as a cgroup
 # or a small machine would impose): refused up front (exit 2) or out of memory
 # (exit 1), never killed

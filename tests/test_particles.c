@@ -255,6 +255,34 @@ static void test_close_pair(gsl_rng *r)
   free(x);
 }
 
+static int cmp_double(const void *a, const void *b)
+{
+  double x = *(const double *)a, y = *(const double *)b;
+  return (x > y) - (x < y);
+}
+
+/* The spacing's median (a bisection on the values, no allocation) against a
+ * sorted copy: odd and even counts, repeated values, values of both signs. */
+static void test_spacing_median(gsl_rng *r)
+{
+  for (size_t n = 1; n <= 40; n++) {
+    double v[40], sorted[40];
+    for (size_t i = 0; i < n; i++)
+      v[i] = i % 5 == 3 ? v[i / 2] : (gsl_rng_uniform(r) - 0.2) * pow(10.0, (double)(i % 7) - 3.0);
+    memcpy(sorted, v, n * sizeof *v);
+    qsort(sorted, n, sizeof *sorted, cmp_double);
+    double med = n % 2 ? sorted[n / 2] : 0.5 * (sorted[n / 2] + sorted[n / 2 - 1]);
+    mfs_point_set s1 = {.dim = 1, .n = n, .vol = v};
+    double got = mfs_point_set_spacing(&s1);
+    CHECK(got == med, "1D spacing of %zu values: %.17g, the sorted median %.17g", n, got, med);
+    if (med > 0.0) {
+      mfs_point_set s2 = {.dim = 2, .n = n, .vol = v};
+      CHECK(mfs_point_set_spacing(&s2) == sqrt(med), "2D spacing of %zu values: sqrt of the median",
+            n);
+    }
+  }
+}
+
 static void test_errors(void)
 {
   mfs_status st;
@@ -285,6 +313,7 @@ int main(void)
   test_lattice_as_points();
   test_quadrature(r);
   test_close_pair(r);
+  test_spacing_median(r);
   test_errors();
   gsl_rng_free(r);
   return check_summary("test_particles");

@@ -861,6 +861,40 @@ void cli_out_abort(cli_out *o)
   o->f = NULL;
 }
 
+/* Commits held back by cli_out_hold: closed and checked, still pending (a
+ * failure removes them), renamed by cli_out_release. */
+static struct {
+  char *tmp, *path;
+} held[MAX_OUT];
+static int holding = 0, nheld = 0;
+
+void cli_out_hold(void)
+{
+  holding = 1;
+}
+
+void cli_out_release(void)
+{
+  holding = 0;
+  for (int i = 0; i < nheld; i++) {
+    char *tmp = held[i].tmp, *path = held[i].path;
+    held[i].tmp = held[i].path = NULL;
+    int bad = rename(tmp, path) != 0;
+    if (bad)
+      remove(tmp);
+    track_tmp(tmp, 0);
+    mfs_free(tmp);
+    if (bad) {
+      for (int j = i + 1; j < nheld; j++) /* the others stay unwritten too */
+        remove(held[j].tmp);
+      nheld = 0;
+      cli_die(1, "-o %s: cannot write the output file", path);
+    }
+    mfs_free(path);
+  }
+  nheld = 0;
+}
+
 void cli_out_commit(cli_out *o)
 {
   if (current_out == o)
@@ -874,6 +908,12 @@ void cli_out_commit(cli_out *o)
   int bad = ferror(o->f);
   bad |= fclose(o->f) != 0;
   o->f = NULL;
+  if (o->tmp && !bad && holding && nheld < MAX_OUT) {
+    held[nheld].tmp = o->tmp;
+    held[nheld++].path = o->path;
+    o->tmp = o->path = NULL;
+    return;
+  }
   if (o->tmp) {
     if (bad || rename(o->tmp, o->path) != 0)
       bad = 1;

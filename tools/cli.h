@@ -172,6 +172,12 @@ void cli_out_open(cli_out *o, const char *path);
 const char *cli_out_open_fmt(cli_out *o, const char *fmt, ...);
 void cli_out_commit(cli_out *o);  /* close and rename; exits 1 on I/O failure */
 void cli_out_abort(cli_out *o);   /* close and remove the temporary file */
+/* All or nothing for a command that writes several files: after
+ * cli_out_hold, cli_out_commit closes and checks a file but leaves it under
+ * its temporary name (removed if the command fails) until cli_out_release
+ * renames every one of them. */
+void cli_out_hold(void);
+void cli_out_release(void);
 
 /* Format a double with 16 significant digits, "0" for zero. */
 void cli_fmt(char *buf, size_t len, double v);

@@ -88,6 +88,8 @@ static void classify_lattice(const model_cmd *c, int frame, lattice_check *lc)
   ds.disc.frame = frame ? MFS_FRAME_EULERIAN : MFS_FRAME_LAGRANGIAN;
   mfs_status st;
   mfs_disp_plan *pl = mfs_disp_plan_alloc(&ds, &st);
+  if (!pl && st == MFS_ENOMEM)
+    cli_die(1, "equivalent lattice: out of memory");
   if (!pl)
     return; /* not covered (e.g. plane strain Eulerian): reported as such */
   double th[7];
@@ -100,6 +102,8 @@ static void classify_lattice(const model_cmd *c, int frame, lattice_check *lc)
   double sbar = 0.0;
   st = mfs_classify(pl, &smp, &sbar, 1, &lc->cl);
   mfs_disp_plan_free(pl);
+  if (st == MFS_ENOMEM)
+    cli_die(1, "equivalent lattice: out of memory");
   if (st != MFS_OK)
     return;
   lc->ok = 1;
@@ -144,6 +148,7 @@ int cmd_check(int argc, char **argv)
     cli_die(2, "--frame eulerian with kernel %s: a cusp at r = 0 has no second derivatives",
             c.s.disc.kernel->name);
 
+  cli_out_hold(); /* the CSV and the modes: all written, or none */
   run_opts ro = {.zero_modes = 1, .tol = 1e-8, .arpack_tol = 1e-12, .certify = 1, .keep = 1};
   run_result r;
   model_run(&c, &ro, &r);
@@ -204,6 +209,11 @@ int cmd_check(int argc, char **argv)
     if (mfs_step_rules[k] == cv->rule)
       ur = k;
   double dtu = ur >= 0 ? r.dt_rule[ur] : NAN;
+
+  /* the CSV opened first: its allocations fail before a line of the summary is out */
+  cli_out out = {0};
+  if (c.m.out)
+    cli_out_open(&out, c.m.out);
 
   /* ---- the summary ---- */
   FILE *o = stdout;
@@ -332,8 +342,6 @@ int cmd_check(int argc, char **argv)
 
   /* ---- the CSV ---- */
   if (c.m.out) {
-    cli_out out;
-    cli_out_open(&out, c.m.out);
     FILE *f = out.f;
     eigs_config_header(f);
     fputs(",verdict,lambda_max,dt_crit,dt_certified,certified_fraction,certify_margin,"
@@ -410,6 +418,7 @@ int cmd_check(int argc, char **argv)
     fputc('\n', f);
     cli_out_commit(&out);
   }
+  cli_out_release();
   mfs_free(spm);
   mfs_free(layer);
   run_result_free(&r);

@@ -197,6 +197,31 @@ static void config(FILE *f, const mfs_disc *d, const char *latn, double dil, con
   putc_num(f, ps ? ps->sigma[1] : NAN);
 }
 
+/* What cmd_dispersion allocates, freed together (by cli_die too: nothing is
+ * left for the sanitizer's leak check, whatever the stack still points to). */
+typedef struct {
+  double *thr, *kap;
+  mfs_disp_plan **plans;
+  size_t nplans;
+  double complex *w;
+  mfs_status *cst;
+  mfs_class *cls;
+} disp_work;
+
+static void disp_work_free(void *p)
+{
+  disp_work *dw = p;
+  if (dw->plans)
+    for (size_t i = 0; i < dw->nplans; i++)
+      mfs_disp_plan_free(dw->plans[i]);
+  mfs_free(dw->plans);
+  mfs_free(dw->thr);
+  mfs_free(dw->kap);
+  mfs_free(dw->w);
+  mfs_free(dw->cst);
+  mfs_free(dw->cls);
+}
+
 int cmd_dispersion(int argc, char **argv)
 {
   cli_disc d;
@@ -206,6 +231,11 @@ int cmd_dispersion(int argc, char **argv)
   unsigned char seen_d[CLI_DISC_NOPTS], seen_p[CLI_PHYSICS_NOPTS], seen_o[24];
   cli_group g[3] = {{cli_disc_opts, &d, seen_d}, {cli_physics_opts, &d, seen_p}, {opts, &o, seen_o}};
   cli_parse(argc, argv, usage, about, g, 3);
+  /* the lists of values, freed by cli_die too */
+  cli_on_die(mfs_free, d.dilation.v);
+  cli_on_die(mfs_free, o.stress.v);
+  cli_on_die(mfs_free, o.theta.v);
+  cli_on_die(mfs_free, o.kappa.v);
   if (cli_seen(&g[2], "--ls-length") && !cli_seen(&g[2], "--ls-alpha"))
     cli_die(2, "--ls-length given without --ls-alpha; give both for least-squares stabilization");
   if (o.theta.n && d.dim == 1)
@@ -287,6 +317,8 @@ int cmd_dispersion(int argc, char **argv)
   const double *th = o.theta.n ? o.theta.v : &zero;
   double *thr = mfs_malloc(nth * sizeof *thr);
   mfs_disp_plan **plans = mfs_calloc(ndil, sizeof *plans);
+  disp_work dw = {.thr = thr, .plans = plans, .nplans = ndil};
+  cli_on_die(disp_work_free, &dw);
   if (!thr || !plans)
     cli_die(1, "out of memory");
   for (size_t t = 0; t < nth; t++)
@@ -339,6 +371,10 @@ int cmd_dispersion(int argc, char **argv)
     cst = mfs_malloc(nchunk * sizeof *cst);
   }
   mfs_class *cls = mfs_malloc(nsig * sizeof *cls);
+  dw.kap = kap;
+  dw.w = w;
+  dw.cst = cst;
+  dw.cls = cls;
   if ((!o.classify && (!kap || !w || !cst)) || !cls)
     cli_die(1, "out of memory");
   const char *latn = disc.source.lattice == MFS_LATTICE_LINE  ? "line"
@@ -448,14 +484,9 @@ int cmd_dispersion(int argc, char **argv)
     }
   }
   cli_out_commit(&out);
-  for (size_t i = 0; i < ndil; i++)
-    mfs_disp_plan_free(plans[i]);
-  mfs_free(plans);
-  mfs_free(kap);
-  mfs_free(w);
-  mfs_free(cst);
-  mfs_free(cls);
-  mfs_free(thr);
+  for (int k = 0; k < 5; k++) /* dw and the lists */
+    cli_on_die_pop();
+  disp_work_free(&dw);
   mfs_free(d.dilation.v);
   mfs_free(o.stress.v);
   mfs_free(o.theta.v);

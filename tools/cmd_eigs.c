@@ -769,6 +769,7 @@ int cmd_eigs(int argc, char **argv)
     cli_die(2, "%s with --seeds: writes one model; drop --seeds",
             e.export_prefix ? "--export-mtx" : "--write-modes");
   model_finish(&c, &g[0], &g[1], &g[2]);
+  cli_out_hold(); /* the CSV, the modes and the matrices: all written, or none */
 
   run_opts ro = {.zero_modes = e.zero_modes, .tol = e.tol, .nev = e.nev, .ncv = e.ncv,
                  .maxiter = e.maxiter, .arpack_tol = e.arpack_tol, .certify = c.m.certify,
@@ -850,6 +851,7 @@ int cmd_eigs(int argc, char **argv)
     eigs_row(f, &c, &rr[k], &e, c.m.certify, nseeds ? sweep : NULL);
   }
   cli_out_commit(&out);
+  cli_out_release();
   for (size_t k = 0; k < nrun; k++) {
     if (rr[k].nonpositive > 0 && !nseeds) {
       size_t I = rr[k].min_mass_particle;

@@ -45,7 +45,11 @@ typedef struct {
   int support;
   long directions, wavenumbers;
   const char *out;
+  double max_evaluations;
 } map_opts;
+
+/* the default limit on a map's symbol evaluations (about 1 us each: a few minutes) */
+#define MAP_MAX_EVALUATIONS 2e8
 
 static const char *const support_names[] = {"volume", "reference", NULL};
 
@@ -79,6 +83,10 @@ static const cli_opt opts[] = {
   {.name = "--wavenumbers", .type = CLI_INT, .arg = "N",
    .help = "wave numbers per direction (default 64)", .offset = OFF(wavenumbers),
    .bounds = CLI_GE | CLI_LE, .lo = 1, .hi = 100000},
+  {.name = "--max-evaluations", .type = CLI_REAL, .arg = "N",
+   .help = "refuse a map of more than N symbol evaluations: grid points x dilations x frames x\n"
+           "(directions x wavenumbers + wavenumbers + 2) (default 2e8)",
+   .offset = OFF(max_evaluations), .bounds = CLI_GE | CLI_LE, .lo = 1, .hi = 1e15},
   {.name = "-o", .type = CLI_TEXT, .arg = "FILE",
    .help = "output file (default: standard output)", .offset = OFF(out)},
   {.type = CLI_END}};
@@ -241,6 +249,40 @@ static void putc_num(FILE *f, double v)
   fputc(',', f);
 }
 
+static void plan_free_cb(void *p)
+{
+  mfs_disp_plan_free(p);
+}
+
+static void sample_free_cb(void *p)
+{
+  mfs_disp_sample_free(p);
+}
+
+/* The workspaces of cmd_map, freed together (by cli_die too). */
+typedef struct {
+  double *kz, *kall;
+  double complex *w;
+  map_point *mps;
+  mfs_plane_state *pss;
+  mfs_ellipticity *pdes;
+  mfs_status *pst;
+} map_work;
+
+static void map_work_free(void *p)
+{
+  map_work *mw = p;
+  mfs_free(mw->kz);
+  mfs_free(mw->kall);
+  mfs_free(mw->w);
+  mfs_free(mw->mps);
+  mfs_free(mw->pss);
+  mfs_free(mw->pdes);
+  mfs_free(mw->pst);
+}
+
+/* Every cli_die of cmd_map frees what it holds (cli_on_die): nothing is left
+ * for the sanitizer's leak check, whatever the stack still points to. */
 int cmd_map(int argc, char **argv)
 {
   cli_disc d;
@@ -251,6 +293,7 @@ int cmd_map(int argc, char **argv)
   unsigned char seen_d[CLI_DISC_NOPTS], seen_p[CLI_PHYSICS_NOPTS], seen_o[16];
   cli_group g[3] = {{cli_disc_opts, &d, seen_d}, {cli_physics_opts, &d, seen_p}, {opts, &o, seen_o}};
   cli_parse(argc, argv, usage, about, g, 3);
+  cli_on_die(mfs_free, d.dilation.v);
   if (d.dim != 2 || d.physics != 1)
     cli_die(2, "--%s: mfstab map analyses 2D plane strain (--dim 2 --physics plane-strain)",
             d.dim != 2 ? "dim" : "physics");
@@ -289,6 +332,7 @@ int cmd_map(int argc, char **argv)
   long ng;
   double *grid = parse_range(stretch_map ? "--stretch-range" : "--stress-range",
                              stretch_map ? o.stretch_range : o.stress_range, stretch_map, &ng);
+  cli_on_die(mfs_free, grid);
   /* SI: the material's modulus and density with --spacing */
   int sm = cli_seen(&g[0], "--modulus"), sd = cli_seen(&g[0], "--density"),
       ss = cli_seen(&g[0], "--spacing");
@@ -311,16 +355,36 @@ int cmd_map(int argc, char **argv)
   /* workspaces per thread: zone samples (a per-state plan's own), all samples, omega^2 */
   size_t nz = (size_t)(o.directions * o.wavenumbers), nw = (size_t)o.wavenumbers + 2;
   size_t npt = (size_t)ng * (size_t)ng;
+  double evals = (double)npt * (double)ndil * (double)nfr * ((double)nz + (double)nw);
+  double elim = o.max_evaluations > 0.0 ? o.max_evaluations : MAP_MAX_EVALUATIONS;
+  if (!(evals <= elim))
+    cli_die(2,
+            "%s %s: about %.3g symbol evaluations (%.3g grid points x %zu dilation%s x %d frame%s "
+            "x %.3g wave vectors), more than --max-evaluations %.3g%s; a coarser grid, fewer "
+            "--directions or --wavenumbers, or raise --max-evaluations",
+            stretch_map ? "--stretch-range" : "--stress-range",
+            stretch_map ? o.stretch_range : o.stress_range, evals, (double)npt, ndil,
+            ndil == 1 ? "" : "s", nfr, nfr == 1 ? "" : "s", (double)(nz + nw), elim,
+            o.max_evaluations > 0.0 ? "" : " (the default)");
   int nthr = mfs_omp_threads();
-  double *kz = mfs_malloc(2 * nz * (size_t)nthr * sizeof *kz);
-  double *kall = mfs_malloc(2 * (nz + nw) * (size_t)nthr * sizeof *kall);
-  double complex *w = mfs_malloc((nz + nw) * 4 * (size_t)nthr * sizeof *w);
-  map_point *mps = mfs_malloc(npt * sizeof *mps);
-  mfs_plane_state *pss = mfs_malloc(npt * sizeof *pss);
-  mfs_ellipticity *pdes = mfs_malloc(npt * sizeof *pdes);
-  mfs_status *pst = mfs_malloc(2 * npt * sizeof *pst);
-  if (!kz || !kall || !w || !mps || !pss || !pdes || !pst)
+  map_work mw = {
+    .kz = mfs_malloc(2 * nz * (size_t)nthr * sizeof *mw.kz),
+    .kall = mfs_malloc(2 * (nz + nw) * (size_t)nthr * sizeof *mw.kall),
+    .w = mfs_malloc((nz + nw) * 4 * (size_t)nthr * sizeof *mw.w),
+    .mps = mfs_malloc(npt * sizeof *mw.mps),
+    .pss = mfs_malloc(npt * sizeof *mw.pss),
+    .pdes = mfs_malloc(npt * sizeof *mw.pdes),
+    .pst = mfs_malloc(2 * npt * sizeof *mw.pst),
+  };
+  cli_on_die(map_work_free, &mw);
+  if (!mw.kz || !mw.kall || !mw.w || !mw.mps || !mw.pss || !mw.pdes || !mw.pst)
     cli_die(1, "out of memory");
+  double *kz = mw.kz, *kall = mw.kall;
+  double complex *w = mw.w;
+  map_point *mps = mw.mps;
+  mfs_plane_state *pss = mw.pss;
+  mfs_ellipticity *pdes = mw.pdes;
+  mfs_status *pst = mw.pst;
   const char *latn = disc.source.lattice == MFS_LATTICE_HEX ? "hex" : "square";
   cli_out out;
   cli_out_open(&out, o.out);
@@ -348,6 +412,7 @@ int cmd_map(int argc, char **argv)
       if (!per_state) {
         mfs_status st;
         pl = mfs_disp_plan_alloc(&base, &st);
+        cli_on_die(plan_free_cb, pl);
         if (!pl) {
           if (st == MFS_ENOTSUP)
             cli_die(2, "--frame %s: not covered for --shape %s (position derivatives: mls, shepard, "
@@ -357,6 +422,7 @@ int cmd_map(int argc, char **argv)
         }
         zone(pl, o.directions, o.wavenumbers, kz);
         smp = mfs_disp_sample_alloc(pl, nz, kz, &st);
+        cli_on_die(sample_free_cb, smp);
         if (!smp)
           cli_die(1, "map: %s", mfs_strerror(st));
       }
@@ -440,18 +506,19 @@ int cmd_map(int argc, char **argv)
         char lab[96];
         fprintf(f, "%s\n", mfs_class_label(mp.labels, lab, sizeof lab));
       }
+      if (!per_state) {
+        cli_on_die_pop();
+        cli_on_die_pop();
+      }
       mfs_disp_sample_free(smp);
       mfs_disp_plan_free(pl);
     }
   cli_out_commit(&out);
+  cli_on_die_pop(); /* the workspaces */
+  cli_on_die_pop(); /* grid */
+  cli_on_die_pop(); /* the dilations */
+  map_work_free(&mw);
   mfs_free(grid);
-  mfs_free(kz);
-  mfs_free(kall);
-  mfs_free(w);
-  mfs_free(mps);
-  mfs_free(pss);
-  mfs_free(pdes);
-  mfs_free(pst);
   mfs_free(d.dilation.v);
   return 0;
 }

@@ -46,6 +46,7 @@ typedef struct {
   const mfs_spsolve_type *solver;
   double solve_rcond_min;
   int ebc;
+  double max_entries;
 } static_opts;
 
 static const char *const ebc_names[] = {"lm", "ghost", NULL};
@@ -129,6 +130,10 @@ static const cli_opt opts[] = {
   {.name = "--solve-rcond-min", .type = CLI_REAL, .arg = "R",
    .help = "a system whose solver rcond estimate is below R is singular (default 1e-15)",
    .offset = OFF(solve_rcond_min), .bounds = CLI_GE | CLI_LT, .lo = 0, .hi = 1},
+  {.name = "--max-entries", .type = CLI_REAL, .arg = "N",
+   .help = "refuse a model of more than about N neighbour entries, integration points times "
+           "nodes in a support (default 5e8)",
+   .offset = OFF(max_entries), .bounds = CLI_GE | CLI_LE, .lo = 1, .hi = 1e15},
   {.name = "-o", .type = CLI_TEXT, .arg = "FILE",
    .help = "output file (default: standard output)", .offset = OFF(out)},
   {.type = CLI_END}};
@@ -151,6 +156,7 @@ static size_t parse_methods(const char *arg, const mfs_static_method **out)
   char *copy = mfs_strdup(arg);
   if (!copy)
     cli_die(1, "out of memory");
+  cli_on_die(mfs_free, copy); /* after the message, which quotes it */
   for (char *s = copy;;) {
     char *comma = strchr(s, ',');
     if (comma)
@@ -167,8 +173,47 @@ static size_t parse_methods(const char *arg, const mfs_static_method **out)
       break;
     s = comma + 1;
   }
+  cli_on_die_pop();
   mfs_free(copy);
   return n;
+}
+
+/* The work of the largest model (the finest level of --refine, the ghost
+ * columns included): about (integration points) x (nodes in a support, pi D^2
+ * in 2D) neighbour entries, an integration point per node (nodal) or N^2 per
+ * cell (gaussN), for the method of the most points; or the entries of the
+ * stiffness matrix, 2 x 2 for each pair of nodes within two supports (16 pi
+ * D^2 a node), where that is more (the nodal methods).  Refused beyond
+ * --max-entries (default CLI_MAX_ENTRIES, as the plans of the other
+ * commands): a model of 3e8 nodes would otherwise run for hours. */
+static void check_work(const mfs_static_spec *s, const mfs_static_method **ms, size_t nm,
+                       const static_opts *o, const char *nodes_arg)
+{
+  double scale = o->refine > 1 ? (double)(1L << (o->refine - 1)) : 1.0;
+  double nx = (double)(s->nx - 1) * scale + 1.0 + (double)s->ghost;
+  double ny = (double)(s->ny - 1) * scale + 1.0;
+  double nodes = nx * ny;
+  double per_point = M_PI * s->dilation * s->dilation;
+  if (per_point < 1.0)
+    per_point = 1.0;
+  double worst = 16.0 * nodes * per_point; /* the stiffness */
+  const char *wm = ms[0]->name;
+  for (size_t k = 0; k < nm; k++) {
+    const mfs_quad_type *q = s->quadrature ? s->quadrature : ms[k]->quadrature;
+    double g = q && q->gauss_n > 0 ? (double)q->gauss_n : 1.0;
+    double e = nodes * g * g * per_point;
+    if (e > worst)
+      worst = e, wm = ms[k]->name;
+  }
+  double lim = o->max_entries > 0.0 ? o->max_entries : CLI_MAX_ENTRIES;
+  if (!(worst <= lim))
+    cli_die(2,
+            "--nodes %s: about %.3g neighbour entries (%.3g nodes%s, method %s, --dilation %g), "
+            "more than --max-entries %.3g%s; fewer nodes, levels or a smaller dilation, or raise "
+            "--max-entries",
+            nodes_arg ? nodes_arg : "(default)", worst, nodes,
+            o->refine > 1 ? " on the finest level" : "", wm, s->dilation, lim,
+            o->max_entries > 0.0 ? "" : " (the default)");
 }
 
 /* --nodes NX,NY (beam) or N (plate-hole). */
@@ -177,6 +222,7 @@ static void parse_nodes(const char *arg, int beam, int *nx, int *ny)
   char *copy = mfs_strdup(arg);
   if (!copy)
     cli_die(1, "out of memory");
+  cli_on_die(mfs_free, copy);
   char *comma = strchr(copy, ',');
   if (comma)
     *comma = '\0';
@@ -195,10 +241,25 @@ static void parse_nodes(const char *arg, int beam, int *nx, int *ny)
     cli_die(2, "--nodes '%s': NY = %ld out of range; allowed %ld to %ld", arg, b, lo, hi);
   *nx = (int)a;
   *ny = beam ? (int)b : (int)a;
+  cli_on_die_pop();
   mfs_free(copy);
 }
 
-/* One model, assembled and solved; dies with the right message and code. */
+static void static_free_cb(void *m)
+{
+  mfs_static_free(m);
+}
+
+/* Done with a model of run_model: its clean-up for cli_die removed, freed. */
+static void model_done(mfs_static *m)
+{
+  cli_on_die_pop();
+  mfs_static_free(m);
+}
+
+/* One model, assembled and solved; dies with the right message and code.
+ * The model is freed by cli_die until model_done (a die leaves nothing
+ * behind, for the sanitizer's leak check of tests/test_alloc.sh). */
 static mfs_static *run_model(const mfs_static_spec *s, const static_opts *o, int solve)
 {
   mfs_status st;
@@ -210,6 +271,7 @@ static mfs_static *run_model(const mfs_static_spec *s, const static_opts *o, int
               s->problem->name);
     cli_die(1, "building the model: %s", mfs_strerror(st));
   }
+  cli_on_die(static_free_cb, m);
   mfs_static_where w = {{0, 0}, 0, 0};
   st = mfs_static_assemble(m, &w);
   mfs_static_info in;
@@ -278,9 +340,10 @@ static void nodal_csv(FILE *f, const mfs_static_spec *base, const mfs_static_met
     s.method = ms[k];
     mfs_static *m = run_model(&s, o, 1);
     size_t n = mfs_static_nnodes(m);
-    double *uh = mfs_malloc(2 * n * sizeof *uh), *ue = mfs_malloc(2 * n * sizeof *ue);
-    if (!uh || !ue)
+    double *uh = mfs_malloc(4 * n * sizeof *uh), *ue = uh + 2 * n; /* one block */
+    if (!uh)
       cli_die(1, "out of memory");
+    cli_on_die(mfs_free, uh);
     mfs_status st = mfs_static_nodal_solution(m, uh, ue);
     if (st != MFS_OK)
       cli_die(1, "the nodal solution of method %s: %s", s.method->name, mfs_strerror(st));
@@ -297,9 +360,9 @@ static void nodal_csv(FILE *f, const mfs_static_spec *base, const mfs_static_met
       put(f, ue[2 * I], 0);
       put(f, ue[2 * I + 1], 1);
     }
+    cli_on_die_pop();
     mfs_free(uh);
-    mfs_free(ue);
-    mfs_static_free(m);
+    model_done(m);
   }
 }
 
@@ -322,11 +385,16 @@ static void study_csv(FILE *f, const mfs_static_spec *base, const mfs_static_met
         "rate_l2,rate_L2,rate_energy,rate_energy_nodal,local_rate_L2,local_rate_energy\n",
         f);
   level_row *rows = mfs_malloc(L * sizeof *rows);
-  double *h = mfs_malloc(L * sizeof *h), *e[4];
-  for (int k = 0; k < 4; k++)
-    e[k] = mfs_malloc(L * sizeof *e[k]);
-  if (!rows || !h || !e[0] || !e[1] || !e[2] || !e[3])
+  double *h = mfs_malloc(5 * L * sizeof *h), *e[4]; /* h and the four errors: one block */
+  if (!rows || !h) {
+    mfs_free(rows);
+    mfs_free(h);
     cli_die(1, "out of memory");
+  }
+  for (int k = 0; k < 4; k++)
+    e[k] = h + (size_t)(k + 1) * L;
+  cli_on_die(mfs_free, rows);
+  cli_on_die(mfs_free, h);
   for (size_t k = 0; k < nm; k++) {
     mfs_static_spec s = *base;
     s.method = ms[k];
@@ -351,7 +419,7 @@ static void study_csv(FILE *f, const mfs_static_spec *base, const mfs_static_met
       e[1][l] = r->e.L2;
       e[2][l] = r->e.energy;
       e[3][l] = r->e.energy_nodal;
-      mfs_static_free(m);
+      model_done(m);
     }
     double rate[4];
     for (int q = 0; q < 4; q++)
@@ -380,10 +448,10 @@ static void study_csv(FILE *f, const mfs_static_spec *base, const mfs_static_met
       put(f, le, 1);
     }
   }
+  cli_on_die_pop();
+  cli_on_die_pop();
   mfs_free(rows);
   mfs_free(h);
-  for (int k = 0; k < 4; k++)
-    mfs_free(e[k]);
 }
 
 static void patch_csv(FILE *f, const mfs_static_spec *base, const mfs_static_method **ms,
@@ -427,7 +495,7 @@ static void patch_csv(FILE *f, const mfs_static_spec *base, const mfs_static_met
     put(f, c.test_lambda, 0);
     put(f, c.test_lambda_dev, 0);
     fprintf(f, "%zu\n", c.lambda_points);
-    mfs_static_free(m);
+    model_done(m);
   }
 }
 
@@ -499,6 +567,7 @@ int cmd_static(int argc, char **argv)
       cli_die(2, "--refine %ld: the finest level would have %.3g nodes (more than 2e7); fewer levels",
               o.refine, fine * finey);
   }
+  check_work(&s, ms, nm, &o, o.nodes);
   cli_out out;
   cli_out_open(&out, o.out);
   if (o.patch)

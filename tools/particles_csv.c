@@ -218,12 +218,14 @@ void particle_file_read(particle_file *pf, const char *path, double min_dist)
     pf->line[I] = ln;
     pf->n++;
   }
-  int rerr = ferror(f);
-  mfs_free(buf);
+  int rerr = ferror(f), eof = feof(f);
+  mfs_free_libc(buf); /* getline's: the C library's */
   mfs_free(map.slot);
   fclose(f);
   if (rerr)
     cli_die(2, "--particles %s: read error", path);
+  if (!eof) /* getline stopped before the end: its memory */
+    cli_die(1, "%s:%zu: out of memory", path, ln + 1);
   if (!header)
     cli_die(2, "%s:1: empty file; expected a header x[,y][,volume][,group] and one particle a line",
             path);

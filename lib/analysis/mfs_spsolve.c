@@ -40,6 +40,25 @@ static double backward_error(const mfs_csr *A, const double *b, const double *x)
 
 /* ---- CHOLMOD ---------------------------------------------------------- */
 
+/* CHOLMOD's default ordering strategy (nmethods 0, no given permutation:
+ * method 1 is AMD, method 2 METIS, tried only where AMD's fill is high, the
+ * better one taken) skips an ordering that fails for lack of memory and
+ * clears the status: the factorization then uses another ordering than it
+ * does with enough memory, with another rounding and another rcond
+ * estimate.  1 if that happened after cholmod_l_analyze on a fresh common
+ * (the methods' counts start EMPTY): the solvers report it as out of memory
+ * rather than a different result. */
+static int ordering_skipped(const cholmod_common *c)
+{
+  if (c->nmethods != 0)
+    return 0;
+  double lnz = c->method[1].lnz, fl = c->method[1].fl;
+  if (lnz < 0.0)
+    return 1; /* AMD failed */
+  int metis_tried = !(fl < 500.0 * lnz || lnz < 5.0 * c->anz); /* cholmod_analyze's test */
+  return metis_tried && c->method[2].lnz < 0.0;
+}
+
 static int cholmod_solve_fn(const mfs_csr *A, const double *b, double *x, mfs_spsolve_info *info)
 {
   cholmod_common c;
@@ -73,7 +92,7 @@ static int cholmod_solve_fn(const mfs_csr *A, const double *b, double *x, mfs_sp
   if (!cholmod_l_sort(S, &c))
     goto done;
   L = cholmod_l_analyze(S, &c);
-  if (!L)
+  if (!L || ordering_skipped(&c))
     goto done;
   int ok = cholmod_l_factorize(S, L, &c);
   info->lib_status = c.status;
@@ -159,7 +178,8 @@ static int cholmod_constrained_fn(const mfs_csr *A, const mfs_csr *C, const doub
   cholmod_sparse *Af = NULL, *Ct = NULL, *CtC = NULL, *Mf = NULL, *M = NULL;
   cholmod_factor *L = NULL;
   cholmod_dense *Bd = NULL, *Z = NULL, *bt = NULL, *y = NULL;
-  double *S = NULL, *r = NULL;
+  double *S = NULL, *r = NULL, *wk = NULL;
+  lapack_int *iwk = NULL;
   Af = csr_as_columns(A, &c); /* A^T = A */
   Ct = csr_as_columns(C, &c); /* n x m */
   if (!Af || !Ct)
@@ -180,7 +200,7 @@ static int cholmod_constrained_fn(const mfs_csr *A, const mfs_csr *C, const doub
   if (!M)
     goto done;
   L = cholmod_l_analyze(M, &c);
-  if (!L)
+  if (!L || ordering_skipped(&c))
     goto done;
   int ok = cholmod_l_factorize(M, L, &c);
   info->lib_status = c.status;
@@ -206,7 +226,9 @@ static int cholmod_constrained_fn(const mfs_csr *A, const mfs_csr *C, const doub
   bt = cholmod_l_allocate_dense(n, 1, n, CHOLMOD_REAL, &c);
   S = mfs_calloc(m * m + 1, sizeof *S);
   r = mfs_malloc((m + 1) * sizeof *r);
-  if (!Bd || !bt || !S || !r)
+  wk = mfs_malloc((3 * m + 1) * sizeof *wk); /* dpocon's workspaces (the _work driver) */
+  iwk = mfs_malloc((m + 1) * sizeof *iwk);
+  if (!Bd || !bt || !S || !r || !wk || !iwk)
     goto done;
   double *B = Bd->x, *bv = bt->x;
   memset(B, 0, n * (m ? m : 1) * sizeof *B);
@@ -246,7 +268,8 @@ static int cholmod_constrained_fn(const mfs_csr *A, const mfs_csr *C, const doub
       info->rcond = 0.0;
       goto done;
     }
-    LAPACKE_dpocon(LAPACK_COL_MAJOR, 'L', (lapack_int)m, S, (lapack_int)m, anorm, &rcS);
+    LAPACKE_dpocon_work(LAPACK_COL_MAJOR, 'L', (lapack_int)m, S, (lapack_int)m, anorm, &rcS, wk,
+                        iwk);
     LAPACKE_dpotrs(LAPACK_COL_MAJOR, 'L', (lapack_int)m, 1, S, (lapack_int)m, r, (lapack_int)m);
   }
   for (size_t i = 0; i < n; i++) {
@@ -273,6 +296,8 @@ done:
   cholmod_l_finish(&c);
   mfs_free(S);
   mfs_free(r);
+  mfs_free(wk);
+  mfs_free(iwk);
   return st;
 }
 
@@ -432,16 +457,19 @@ static mfs_csr *saddle_matrix(const mfs_csr *A, const mfs_csr *C, const mfs_csr 
 }
 
 /* The normwise backward error of (x, l) for the saddle-point system, from
- * its blocks: r = [A x + Ct^T l - b; C x - g]. */
-static double saddle_backward(const mfs_csr *A, const mfs_csr *C, const mfs_csr *Ct,
-                              const double *b, const double *g, const double *x, const double *l)
+ * its blocks: r = [A x + Ct^T l - b; C x - g], in *be (NAN if (x, l) is not
+ * finite).  MFS_OK, or MFS_ENOMEM (a failure to allocate is not a large
+ * backward error: the caller would call the system singular). */
+static int saddle_backward(const mfs_csr *A, const mfs_csr *C, const mfs_csr *Ct,
+                           const double *b, const double *g, const double *x, const double *l,
+                           double *be)
 {
   size_t n = A->nrow, m = C->nrow;
   double *r = mfs_calloc(n + m + 1, sizeof *r), *rs = mfs_calloc(n + m + 1, sizeof *rs);
   if (!r || !rs) {
     mfs_free(r);
     mfs_free(rs);
-    return NAN;
+    return MFS_ENOMEM;
   }
   double xn = 0.0, bn = 0.0;
   for (size_t i = 0; i < n; i++) {
@@ -475,13 +503,15 @@ static double saddle_backward(const mfs_csr *A, const mfs_csr *C, const mfs_csr 
     rn = fmax(rn, fabs(r[i]));
     an = fmax(an, rs[i]);
   }
+  *be = an * xn + bn > 0.0 ? rn / (an * xn + bn) : 0.0;
   mfs_free(r);
   mfs_free(rs);
-  return an * xn + bn > 0.0 ? rn / (an * xn + bn) : 0.0;
+  return MFS_OK;
 bad:
+  *be = NAN;
   mfs_free(r);
   mfs_free(rs);
-  return NAN;
+  return MFS_OK;
 }
 
 mfs_status mfs_spsolve_constrained(const mfs_spsolve_type *t, const mfs_csr *A, const mfs_csr *C,
@@ -519,8 +549,9 @@ mfs_status mfs_spsolve_constrained(const mfs_spsolve_type *t, const mfs_csr *A, 
   }
   if (st != MFS_OK)
     goto done;
-  info->backward = saddle_backward(A, C, Ct ? Ct : C, b, g, sol, sol + n);
-  st = MFS_OK;
+  st = saddle_backward(A, C, Ct ? Ct : C, b, g, sol, sol + n, &info->backward);
+  if (st != MFS_OK)
+    goto done;
   if (isnan(info->backward) || !(info->rcond >= rcond_min) || info->rcond == 0.0)
     st = MFS_ESYSTEM;
   memcpy(x, sol, n * sizeof *x);

@@ -663,11 +663,16 @@ static int stiffness_pattern(const mfs_static *m, const mfs_nlist *U, mfs_csr **
 {
   size_t n = m->p->n;
   int st = MFS_ENOMEM;
-  mfs_nlist *T = mfs_nlist_transpose(U, n, (mfs_status *)&st);
+  mfs_status tst; /* its own status: st stays MFS_ENOMEM for the allocations below */
+  mfs_nlist *T = mfs_nlist_transpose(U, n, &tst);
   size_t *nptr = mfs_calloc(n + 1, sizeof *nptr), cap = 1 << 16, nnz = 0;
   int *nidx = mfs_malloc(cap * sizeof *nidx), *mark = mfs_malloc(n * sizeof *mark);
   mfs_csr *K = NULL;
-  if (!T || !nptr || !nidx || !mark)
+  if (!T) {
+    st = tst;
+    goto done;
+  }
+  if (!nptr || !nidx || !mark)
     goto done;
   for (size_t i = 0; i < n; i++)
     mark[i] = -1;

@@ -84,3 +84,8 @@ char *mfs_strdup(const char *s)
     memcpy(d, s, n);
   return d;
 }
+
+void mfs_free_libc(void *p)
+{
+  free(p);
+}

@@ -44,6 +44,9 @@ void *mfs_realloc(void *p, size_t size);
 void mfs_free(void *p);
 /* strdup through the allocator (NULL on failure). */
 char *mfs_strdup(const char *s);
+/* Free what the C library allocated itself (open_memstream's buffer): the C
+ * library's free, whatever allocator is set. */
+void mfs_free_libc(void *p);
 
 #ifdef __cplusplus
 }

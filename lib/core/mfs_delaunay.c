@@ -39,7 +39,7 @@ mfs_status mfs_delaunay_2d(size_t n, const double *x, size_t *ntri, int **tri)
   started = 1;
   char flags[] = "qhull d Qt Qbb Qz"; /* no Qc: a point that is no vertex fails anyway */
   int code = qh_new_qhull(qh, 2, (int)n, pts, False, flags, NULL, err);
-  st = MFS_EDOMAIN;
+  st = code == qh_ERRmem ? MFS_ENOMEM : MFS_EDOMAIN; /* Qhull's own memory (not hooked) */
   if (code != 0)
     goto done;
   size_t nf = 0;
@@ -94,7 +94,7 @@ done:
     qh_memfreeshort(qh, &curlong, &totlong);
   }
   fclose(err);
-  mfs_free(msg);
+  mfs_free_libc(msg); /* open_memstream's buffer: the C library's */
   mfs_free(pts);
   if (st == MFS_OK) {
     *tri = t;

@@ -436,53 +436,51 @@ fail:
   return NULL;
 }
 
-/* The k-th smallest of v[0..n) (Hoare's selection, O(n) expected; v is reordered). */
-static double select_kth(double *v, size_t n, size_t k)
+/* The order of doubles (NaN aside) as the order of unsigned 64-bit keys:
+ * a positive value's bits with the sign bit set, a negative value's bits
+ * complemented. */
+static uint64_t order_key(double v)
 {
-  size_t lo = 0, hi = n - 1;
-  uint64_t seed = 0x9e3779b97f4a7c15ULL;
+  uint64_t u;
+  memcpy(&u, &v, sizeof u);
+  return u >> 63 ? ~u : u | (UINT64_C(1) << 63);
+}
+
+static double key_value(uint64_t k)
+{
+  uint64_t u = k >> 63 ? k & ~(UINT64_C(1) << 63) : ~k;
+  double v;
+  memcpy(&v, &u, sizeof v);
+  return v;
+}
+
+/* The k-th smallest (from 0) of v[0..n), by bisection on the keys: 64
+ * passes over v, no copy (so nothing to allocate, nothing that can fail).
+ * The smallest key with more than k values at or below it is a value's. */
+static double kth_smallest(const double *v, size_t n, size_t k)
+{
+  uint64_t lo = 0, hi = UINT64_MAX; /* the answer's key is in [lo, hi] */
   while (lo < hi) {
-    seed = seed * 6364136223846793005ULL + 1442695040888963407ULL;
-    double pivot = v[lo + (size_t)((seed >> 33) % (hi - lo + 1))];
-    size_t i = lo, j = hi;
-    while (i <= j) {
-      while (v[i] < pivot)
-        i++;
-      while (v[j] > pivot)
-        j--;
-      if (i <= j) {
-        double t = v[i];
-        v[i] = v[j];
-        v[j] = t;
-        i++;
-        if (j == 0)
-          break;
-        j--;
-      }
-    }
-    if (k <= j)
-      hi = j;
-    else if (k >= i)
-      lo = i;
+    uint64_t mid = lo + (hi - lo) / 2;
+    size_t below = 0;
+    for (size_t i = 0; i < n; i++)
+      below += order_key(v[i]) <= mid;
+    if (below > k)
+      hi = mid;
     else
-      return v[k];
+      lo = mid + 1;
   }
-  return v[k];
+  return key_value(lo);
 }
 
 double mfs_point_set_spacing(const mfs_point_set *s)
 {
   if (!s || !s->vol || s->n < 1)
     return NAN;
-  double *v = mfs_malloc(s->n * sizeof *v);
-  if (!v)
-    return NAN;
-  memcpy(v, s->vol, s->n * sizeof *v);
   size_t k = s->n / 2;
-  double med = select_kth(v, s->n, k);
+  double med = kth_smallest(s->vol, s->n, k);
   if (s->n % 2 == 0) /* the largest of the lower half */
-    med = 0.5 * (med + select_kth(v, k, k - 1));
-  mfs_free(v);
+    med = 0.5 * (med + kth_smallest(s->vol, s->n, k - 1));
   return s->dim == 1 ? med : sqrt(med);
 }
 

@@ -127,7 +127,8 @@ typedef struct {
 /* The typical spacing of a set with volumes: the median volume in 1D, the
  * square root of the median volume in 2D (on a lattice: dx, or sqrt(dx dy);
  * the median leaves out the halved volumes at the boundary).  NAN without
- * volumes. */
+ * volumes.  Allocates nothing (the median by bisection on the values), so
+ * it cannot fail. */
 double mfs_point_set_spacing(const mfs_point_set *s);
 
 /* The particles of a set.  Cells: 1D the intervals between neighbouring
