@@ -259,9 +259,14 @@ def fig2d(d, name):
         ax.set_xlabel(AXIS_KAPPA)
         ax.set_ylabel(AXIS_OMEGA2_2D)
         ax.axhline(0.0, color="k", lw=0.7)
-        ax.set_ylim(-0.05, 1.25)
         ax.set_title(label if len(panels) > 1 else "nodal integration")
         legend_right(ax, title="wave direction", handles=handles or None)
+    # one scale for every panel, tall enough for every curve (none clipped: Fig. 14a's θ = 0° peaks
+    # at 1.3)
+    top = max([1.25] + [1.04 * max(ln.get_ydata()) for ax in fig.axes[:len(panels)] for ln in ax.lines
+                        if len(ln.get_ydata())])
+    for ax in fig.axes[:len(panels)]:
+        ax.set_ylim(-0.05, top)
     for ax in fig.axes[len(panels):]:
         ax.set_visible(False)
     if zero_seen:
