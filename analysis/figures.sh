@@ -44,4 +44,9 @@ if [ "${FIGURES_PLOTS:-1}" != 0 ]; then
   for m in stress-quad stress-tri zoom; do
     /usr/bin/python3 analysis/plot_map.py "$dir/fig01_000_$m.csv" "$dir/fig01_000_$m.png"
   done
+  # paper 004 Figs 5-6, 8-9: re-plotted from the committed studies at the paper's levels
+  # (analysis/static_studies.sh measures them, outside the main job, as workprec.sh does)
+  if [ -s "$dir/static_beam.csv" ] && [ -s "$dir/static_plate.csv" ]; then
+    /usr/bin/python3 analysis/plot_static.py "$dir"
+  fi
 fi

@@ -12,6 +12,7 @@ and markers (markers staggered so that curves which coincide stay visible, and a
 figure names them); legends outside the axes; a caption with the paper's claim and what mfstab
 finds, computed from the same CSV by analysis/findings.py (the notebooks quote the same module)."""
 import configparser
+import csv
 import os
 import sys
 import textwrap
@@ -259,9 +260,14 @@ def fig2d(d, name):
         ax.set_xlabel(AXIS_KAPPA)
         ax.set_ylabel(AXIS_OMEGA2_2D)
         ax.axhline(0.0, color="k", lw=0.7)
-        ax.set_ylim(-0.05, 1.25)
         ax.set_title(label if len(panels) > 1 else "nodal integration")
         legend_right(ax, title="wave direction", handles=handles or None)
+    # one scale for every panel, tall enough for every curve (none clipped: Fig. 14a's θ = 0° peaks
+    # at 1.3)
+    top = max([1.25] + [1.04 * max(ln.get_ydata()) for ax in fig.axes[:len(panels)] for ln in ax.lines
+                        if len(ln.get_ydata())])
+    for ax in fig.axes[:len(panels)]:
+        ax.set_ylim(-0.05, top)
     for ax in fig.axes[len(panels):]:
         ax.set_visible(False)
     if zero_seen:
@@ -595,6 +601,53 @@ def workprec(d):
               "sideways so that none hides another. RK2 has no stable step on this operator (run forced)."])
 
 
+# ---------------------------------------------------------------- disorder (not a figure of the papers)
+
+def disorder(d):
+    """notebooks-data/disorder.csv of analysis/bench/disorder.sh (committed, measured outside the
+    main job): the finite model under random perturbation of the lattice, re-plotted here."""
+    rows = list(csv.DictReader(open(os.path.join(d, "disorder.csv"), newline="")))
+    quads = [q for q in ("nodal", "stress-quad", "stress-tri") if any(r["quadrature"] == q for r in rows)]
+    n = rows[-1]["seeds"]
+    fig = Figure(1, 3, "Disorder (mfstab's study, no figure of the papers): 16 × 16 periodic anti-plane "
+                 "plate, cubic spline MLS (EFG), Lagrangian kernel, D = 2, lumped mass; lattice points "
+                 f"moved at random by up to F dx; median and min-max band over {n} seeds "
+                 "(analysis/bench/disorder.sh, mfstab eigs --perturb F --seeds N)", legend_width=0.4)
+    keys = [("lambda_max", r"$\lambda_{max}\,\Delta x^2/c^2$ (normalized)", "(a) largest eigenvalue"),
+            ("zero_modes", r"zero-energy modes ($\lambda \leq 10^{-8}\lambda_{max}$)", "(b) zero-energy modes, rigid included"),
+            ("negative_phi", r"quadrature points with some $\phi_I \leq 0$", "(c) points with a negative shape function")]
+    at = {}
+    for j, q in enumerate(quads):
+        r = [x for x in rows if x["quadrature"] == q]
+        x = [100 * float(v["perturb"]) for v in r]
+        st = style(j, len(quads), len(x), every=1)
+        st["markevery"] = 1
+        for ax, (k, _, _) in zip(fig.axes, keys):
+            ax.fill_between(x, [float(v[k + "_min"]) for v in r], [float(v[k + "_max"]) for v in r],
+                            color=st["color"], alpha=0.15, lw=0)
+            ax.plot(x, [float(v[k + "_median"]) for v in r], label=f"{q} (median)", **st)
+        at[q] = r
+    for ax, (_, lab, title) in zip(fig.axes, keys):
+        ax.set_xlabel("perturbation F (% of Δx)")
+        ax.set_ylabel(lab)
+        ax.set_title(title)
+    fig.axes[2].legend(loc="upper left", bbox_to_anchor=(1.02, 1.0), borderaxespad=0.0,
+                       title="quadrature", title_fontsize=9)
+    z0 = ", ".join(f"{q} {at[q][0]['zero_modes_median']}" for q in quads)
+    zf = ", ".join(f"{q} {at[q][1]['zero_modes_max']}" for q in quads)
+    lm = ", ".join(f"{q} {F.g(float(at[q][0]['lambda_max_median']))} to "
+                   f"{F.g(float(at[q][-1]['lambda_max_median']))}" for q in quads)
+    ours = (f"zero-energy modes on the regular lattice (F = 0): {z0}; at F = {F.g(100 * float(at[quads[0]][1]['perturb']))}% "
+            f"at most {zf} (the rigid mode): disorder removes the spurious modes; median λ_max Δx²/c² from F = 0 to "
+            f"{F.g(100 * float(at[quads[0]][-1]['perturb']))}%: {lm}.")
+    fig.save(d, "disorder.png", "The papers analyse regular lattices only (paper 003 Figs 13-16: nodal "
+             "integration's spurious modes on the square lattice).", ours,
+             ["measured by analysis/bench/disorder.sh outside the main job (the committed disorder.csv); "
+              "the main job re-plots it. F = 0 is one model (no seeds), so its band is a point.",
+              "(b) from F = 5% on the three curves coincide at 1 (the rigid mode): their markers overlap; "
+              "(a), (c) below F = 20% nearly so."])
+
+
 def main():
     d = sys.argv[1] if len(sys.argv) > 1 else "notebooks-data"
     by_dilation(d, "fig03.csv", "fig03.png", 3, F.fig03(d), "; stress σ̄ = σ/C ≥ 0 (tension)")
@@ -616,6 +669,8 @@ def main():
         tsph_viscoplastic(d)
     if F.have(d, *F.WORKPREC):
         workprec(d)
+    if F.have(d, "disorder.csv"):
+        disorder(d)
 
 
 if __name__ == "__main__":

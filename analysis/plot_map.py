@@ -70,7 +70,8 @@ def plot(path, out, title=None):
     s = summary(rows)
     title = title or (f"Paper 000 Fig. 1: stable domains, material {first['material']}, "
                       f"{first['kernel']} {first['shape']}, D = {first['dilation']}, "
-                      f"{first['quadrature']}, {first['lattice']} lattice, {first['mass']} mass"
+                      f"{first['quadrature']}, {first['lattice']} lattice, {first['mass']} mass, "
+                      f"frames {', '.join(frames)}"
                       + (f", Eulerian kernel radius rule '{s['rule']}'" if s["rule"] else ""))
     npan = max(1, len(frames) - (1 if "lagrangian" in frames else 0)) + (1 if "lagrangian" in frames else 0)
     fig = P.Figure(1, npan, title, panel=(4.0, 3.6), legend_width=1.9)
@@ -123,8 +124,16 @@ def plot(path, out, title=None):
         ax.set_aspect("equal", adjustable="box")
         ax.set_xlim(min(xs), max(xs))
         ax.set_ylim(min(ys), max(ys))
+    notes = []
+    if "lagrangian" in gr:
+        same = all(r["stable"] == r["pde_stable"] for r in rows if r["frame"] == "lagrangian")
+        notes.append("(a) the Lagrangian kernel's boundary (dashed) is drawn over the PDE's (solid)"
+                     + ("; they coincide: the same grid states are stable." if same else
+                        "; where they differ the solid line shows."))
+    notes.append("Grid: " + f"{len(xs)} x {len(ys)} stretch states; a boundary is the 0.5 contour between "
+                 "stable and unstable grid states; the dots in (b), (c) are the Eulerian kernel's stable states.")
     d, name = os.path.split(out)
-    fig.save(d or ".", name, s["paper"], s["ours"])
+    fig.save(d or ".", name, s["paper"], s["ours"], notes)
 
 
 def summary(rows):

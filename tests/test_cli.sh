@@ -597,6 +597,16 @@ t1=$(grep -c '^003 Table I .*  match  ' "$out" || true)
 check "mfstab reproduce: $t1 Table I columns match, want 4 (every printed entry, from mfstab stencil)" test "$t1" -eq 4
 check "mfstab reproduce: Table II Eulerian stress points listed as errata E1" grep -q '^003 Table II stress points, Eulerian kernel .*  errata E1  ' "$out"
 check "mfstab reproduce: the table not also in reproduce.csv" test -s "$tmp/repro/reproduce.csv"
+# the second process's rows (000 Fig 1, 004 Table III) sit in place: after the scenes, before the
+# not-built rows, the same in the printed table and in reproduce.csv
+order=$(awk 'NR > 1 { k = substr($0, 1, 3) == "000" && $0 ~ /Fig 1 / ? "F" : substr($0, 1, 13) == "004 Table III" ? "T" : $0 ~ /not built/ ? "N" : "o"; if (k != last) printf "%s", k; last = k }' "$out")
+check "mfstab reproduce: the order of the row groups is $order, want ...oFTN (the second process's Fig 1 and Table III rows before the not-built ones)" bash -c "[[ $order == *oFTN ]]"
+n_out=$(($(nlines "$out") - 1)); n_csv=$(($(nlines "$tmp/repro/reproduce.csv") - 1))
+check "mfstab reproduce: $n_out printed rows, $n_csv in reproduce.csv: want equal" test "$n_out" -eq "$n_csv"
+# a failure of an allocation in the second process (the 12000th: in its Fig. 1 map on this build; either process, the same rule): one line, exit 1, no table
+MFSTAB_ALLOC_FAIL=12000 "$M" reproduce --out "$tmp/repro_oom" >/dev/null 2>"$err"; rc=$?
+check "mfstab reproduce, an allocation failing: exit $rc, want 1, and one line on stderr (got $(nlines "$err"): $(head -c 200 "$err"))" bash -c "[ $rc -eq 1 ] && [ $(nlines "$err") -eq 1 ] && grep -q 'out of memory' '$err'"
+check "mfstab reproduce, an allocation failing: reproduce.csv written" test ! -e "$tmp/repro_oom/reproduce.csv"
 if [ -x /usr/bin/python3 ]; then
   # every status is one of the five; every artifact of issue 13 has its rows; each row's CSV exists
   bad_rows=$(/usr/bin/python3 -c '

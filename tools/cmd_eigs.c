@@ -883,6 +883,10 @@ int cmd_eigs(int argc, char **argv)
 /* ------------------------------------------------------------------ */
 /* Figs 17 and 18                                                      */
 
+static char fig_error[160]; /* why eigs_figure17 failed */
+
+const char *eigs_figure17_error(void) { return fig_error; }
+
 static int fig_row(FILE *f, const char *fig, const mfs_model_spec *ms, int nodes)
 {
   const mfs_disc *s = &ms->disc;
@@ -890,7 +894,8 @@ static int fig_row(FILE *f, const char *fig, const mfs_model_spec *ms, int nodes
   size_t bad;
   mfs_model *m = mfs_model_alloc(ms, &st, &bad);
   if (!m) {
-    fprintf(stderr, "mfstab %s: %s D = %g: %s\n", cli_command, fig, s->dilation, mfs_strerror(st));
+    snprintf(fig_error, sizeof fig_error, "Fig. %s, D = %g: %s", fig, s->dilation,
+             mfs_strerror(st));
     return 1;
   }
   mfs_bound_result br;
@@ -901,8 +906,8 @@ static int fig_row(FILE *f, const char *fig, const mfs_model_spec *ms, int nodes
   double lam;
   st = mfs_eig_max(&P, &eo, &lam, NULL, &info);
   if (st != MFS_OK || !(lam > 0.0)) {
-    fprintf(stderr, "mfstab %s: %s D = %g: ARPACK: %s (info %d)\n", cli_command, fig, s->dilation,
-            mfs_strerror(st), info.info);
+    snprintf(fig_error, sizeof fig_error, "Fig. %s, D = %g: ARPACK: %s (info %d)", fig,
+             s->dilation, mfs_strerror(st), info.info);
     mfs_model_free(m);
     return 1;
   }
@@ -922,7 +927,7 @@ static int fig_row(FILE *f, const char *fig, const mfs_model_spec *ms, int nodes
 static int fig_file(const char *dir, const char *name, const mfs_kernel_type *k, int dim)
 {
   cli_out out;
-  const char *path = cli_out_open_fmt(&out, "%s/%s", dir, name);
+  cli_out_open_fmt(&out, "%s/%s", dir, name);
   FILE *f = out.f;
   fputs("figure,kernel,shape,quadrature,mass,nodes,dilation,lambda_max_dx2,bound_dx2,"
         "alpha_dx2,paper_alpha_dx2,paper_alpha2_dx2,bound_ratio,alpha_ratio,negative_phi_points\n",
@@ -949,9 +954,7 @@ static int fig_file(const char *dir, const char *name, const mfs_kernel_type *k,
     }
   }
   if (bad) {
-    cli_out_abort(&out);
-    fprintf(stderr, "mfstab %s: cannot compute %s\n", cli_command, path);
-    cli_out_abort(&out);
+    cli_out_abort(&out); /* fig_error says why */
   } else {
     cli_out_commit(&out);
   }

@@ -20,8 +20,10 @@
  *       against D = 1.5 .. 5: lambda_max, element bound, alpha_1/D^2 of the
  *       kernel (eq. 146) and the printed 13.30/D^2 (eq. 146) and 15.00/D^2
  *       (eq. 148)
- * Returns 0, or 1 after one line on stderr if a model or a file fails. */
+ * Returns 0, or 1 if a model fails (nothing printed: eigs_figure17_error()
+ * says which model and why, for the caller's one line). */
 int eigs_figure17(const char *dir);
+const char *eigs_figure17_error(void);
 
 /* The options of a finite model, shared by eigs, bound and check. */
 typedef struct {

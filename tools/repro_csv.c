@@ -92,7 +92,7 @@ void repro_csv_read(repro_csv *t, const char *file)
   const char *path = repro_path(file);
   FILE *f = fopen(path, "rb");
   if (!f)
-    cli_die(1, "reproduce: cannot read %s", path);
+    cli_die(1, "cannot read %s", path);
   fseek(f, 0, SEEK_END);
   long len = ftell(f);
   fseek(f, 0, SEEK_SET);
