@@ -44,7 +44,7 @@ void model_rules(const model_cmd *c, double *dt)
 void rules_header(FILE *f)
 {
   for (int k = 0; mfs_step_rules[k]; k++)
-    fprintf(f, ",dt_rule_%s,dt_rule_%s_unsafe", mfs_step_rules[k]->name, mfs_step_rules[k]->name);
+    fprintf(f, ",dt_rule_%s_s,dt_rule_%s_unsafe", mfs_step_rules[k]->name, mfs_step_rules[k]->name);
 }
 
 void rules_row(FILE *f, const double *dt, double safe_below, double unsafe_above, int last)
