@@ -24,6 +24,8 @@ lattice frame material support_rule lambda1 lambda2 J pde_stable stable spurious
 branch stretch_x stretch_y unstable longwave_deviation
 problem method ebc plane_strain level unknowns multipliers solver rcond backward_error
 reproduces_1e-10 patch_1e-10 interior_nodes test_lambda test_lambda_dev lambda_points
+figure run scene scheme equation printed alpha_continuum stretch artifact paper mfstab status csv
+mode kind location particle participation_ratio boundary_share layer_share in_layer
 """.split())
 PATTERNS = [r'dt_rule_[a-z_]+_unsafe', r'rate_.*', r'local_rate_.*', r'.*_ratio']
 

@@ -633,6 +633,10 @@ for p in sys.argv[1:]:
         print(p.rsplit("/", 1)[-1], end=" ")' "$tmp/repro"/*.csv)
   check "mfstab reproduce: CSV rows whose field count is not the header's: $bad_csv" test -z "$bad_csv"
 fi
+if [ -x /usr/bin/python3 ]; then
+  msg=$(/usr/bin/python3 "$(dirname "$0")/check_units.py" "$(dirname "$0")/../docs/commands.md" "$tmp/repro"/*.csv)
+  check "mfstab reproduce: columns without a unit: $msg" test -z "$msg"
+fi
 rm -rf "$tmp/repro"
 
 # --- units in the column names (issue 12 item 7, issue 15 item 3) ----------------
@@ -644,6 +648,7 @@ if [ -x /usr/bin/python3 ]; then
   mkdir -p "$u"
   "$M" stencil -o "$u/stencil.csv"
   "$M" eigs --dim 2 --nodes 8,8 --perturb 0.1 --seeds 2 --certify --zero-modes -o "$u/eigs.csv" 2>/dev/null
+  "$M" eigs --dim 2 --nodes 6,6 --write-modes "$u/m" -o /dev/null
   "$M" bound --certify -o "$u/bound.csv"
   "$M" check --dim 2 --nodes 8,8 -o "$u/check.csv" >/dev/null
   "$M" dispersion --modulus 2e9 --density 1000 --spacing 0.001 --stress 0.1 -o "$u/dispersion.csv"
@@ -655,7 +660,7 @@ if [ -x /usr/bin/python3 ]; then
   "$M" run "$SCENES/gaussian-pulse.ini" --set time.end=1e-6 -o "$u/run2.csv"
   "$M" run "$SCENES/plate-pulse-2d.ini" --set time.end=1e-6 -o "$u/run3.csv"
   n=$(ls "$u"/*.csv | wc -l)
-  check "units: $n of 11 command outputs written" test "$n" -eq 11
+  check "units: $n of 12 command outputs written" test "$n" -eq 12
   msg=$(/usr/bin/python3 "$(dirname "$0")/check_units.py" "$(dirname "$0")/../docs/commands.md" "$u"/*.csv)
   check "units: columns without a unit: $msg" test -z "$msg"
   check "units: run's header is '$(head -n 1 "$u/run2.csv")', want t_s,v_err_norm,v_mid_m_s" \

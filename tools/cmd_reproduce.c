@@ -246,7 +246,7 @@ static void table2(void)
 {
   cli_out o;
   cli_out_open(&o, repro_path("table2.csv"));
-  fprintf(o.f, "scheme,paper_max_omega2,max_omega2,kappa_at_max\n");
+  fprintf(o.f, "scheme,paper_max_omega2_norm,max_omega2_norm,kappa_at_max_norm\n");
   struct {
     const char *name, *quad;
     mfs_frame frame;
@@ -777,7 +777,7 @@ static void eq_constants(void)
 {
   cli_out o;
   cli_out_open(&o, repro_path("eq_constants.csv"));
-  fprintf(o.f, "equation,kernel,dim,dilation,printed,alpha,alpha_continuum,h2_lambdaQ_max\n");
+  fprintf(o.f, "equation,kernel,dim,dilation,printed,alpha,alpha_continuum,h2_lambdaQ_max_norm\n");
   double a1 = mfs_bound_alpha(&mfs_kernel_cubic, 1), a2 = mfs_bound_alpha(&mfs_kernel_cubic, 2);
   fprintf(o.f, "136,cubic,1,,%g,%.16g,%.16g,\n", MFS_PAPER_ALPHA, a1,
           mfs_bound_alpha_continuum(&mfs_kernel_cubic, 1));
