@@ -552,7 +552,7 @@ for sig in INT TERM HUP PIPE; do
     --set time.end=1 --set discretization.frame=lagrangian --set output.every=100 \
     -o "$o/sig.csv" >/dev/null 2>&1 &
   pid=$!
-  for _ in $(seq 200); do compgen -G "$o/sig.csv.tmp*" >/dev/null && break; sleep 0.05; done
+  for _ in $(seq 1200); do compgen -G "$o/sig.csv.tmp*" >/dev/null && break; sleep 0.05; done
   seen=$(compgen -G "$o/sig.csv.tmp*" >/dev/null && echo 1 || echo 0)
   kill -"$sig" "$pid"
   wait "$pid"

@@ -13,6 +13,7 @@
 #include "cli.h"
 #include "mfs_alloc.h"
 #include "commands.h"
+#include "mfs_omp.h"
 
 static const char usage[] = "mfstab dispersion [options] [-o FILE]";
 static const char about[] =
@@ -119,11 +120,6 @@ static const cli_opt opts[] = {
  * wave numbers of every angle, all stresses at once (mfs_disp_ray); every
  * point is computed on its own, so the file is the same for any number of
  * threads.  Then written in order. */
-#ifdef _OPENMP
-#define MFS_OMP(x) _Pragma(x)
-#else
-#define MFS_OMP(x)
-#endif
 
 enum { CURVE_CHUNK = 256 };
 

@@ -12,6 +12,7 @@
 #include "cli.h"
 #include "mfs_alloc.h"
 #include "commands.h"
+#include "mfs_omp.h"
 
 static const char usage[] = "mfstab map [options] (--stretch-range FROM:TO:N | --stress-range FROM:TO:N) [-o FILE]";
 static const char about[] =
@@ -140,28 +141,6 @@ static int parse_frames(const char *s, mfs_frame *fr)
 /* The grid points are evaluated in parallel (OpenMP), each on its own with a
  * workspace per thread, and written in order: the file is the same for any
  * number of threads. */
-#ifdef _OPENMP
-#include <omp.h>
-#define MFS_OMP(x) _Pragma(x)
-static int map_threads(void)
-{
-  return omp_get_max_threads();
-}
-static int map_thread(void)
-{
-  return omp_get_thread_num();
-}
-#else
-#define MFS_OMP(x)
-static int map_threads(void)
-{
-  return 1;
-}
-static int map_thread(void)
-{
-  return 0;
-}
-#endif
 
 /* What the map writes for one state and frame. */
 typedef struct {
@@ -332,7 +311,7 @@ int cmd_map(int argc, char **argv)
   /* workspaces per thread: zone samples (a per-state plan's own), all samples, omega^2 */
   size_t nz = (size_t)(o.directions * o.wavenumbers), nw = (size_t)o.wavenumbers + 2;
   size_t npt = (size_t)ng * (size_t)ng;
-  int nthr = map_threads();
+  int nthr = mfs_omp_threads();
   double *kz = mfs_malloc(2 * nz * (size_t)nthr * sizeof *kz);
   double *kall = mfs_malloc(2 * (nz + nw) * (size_t)nthr * sizeof *kall);
   double complex *w = mfs_malloc((nz + nw) * 4 * (size_t)nthr * sizeof *w);
@@ -397,7 +376,7 @@ int cmd_map(int argc, char **argv)
       const long ntask = (long)npt;
       MFS_OMP("omp parallel for schedule(dynamic) if (ntask > 1)")
       for (long q = 0; q < ntask; q++) {
-        int th = map_thread();
+        int th = mfs_omp_thread();
         double *kzt = per_state ? kz + 2 * nz * (size_t)th : kz;
         map_point mp = {0};
         mfs_disp_plan *own = NULL;

@@ -35,14 +35,9 @@
 #include <string.h>
 #include <sys/resource.h>
 #include <time.h>
-#ifdef _OPENMP
-#include <omp.h>
-#define MFS_OMP(x) _Pragma(x)
-#else
-#define MFS_OMP(x)
-#endif
 
 #include "mfstab.h"
+#include "mfs_omp.h"
 
 static double now(void)
 {

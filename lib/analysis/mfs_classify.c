@@ -1,5 +1,6 @@
 #include "mfs_classify.h"
 #include "mfs_alloc.h"
+#include "mfs_omp.h"
 
 #include <complex.h>
 #undef I
@@ -11,11 +12,6 @@
  * every ray; each sample is computed on its own (mfs_disp_ray) and the
  * chunks' minima and maxima are combined in chunk order, so the results are
  * the same bits for any number of threads. */
-#ifdef _OPENMP
-#define MFS_OMP(x) _Pragma(x)
-#else
-#define MFS_OMP(x)
-#endif
 
 enum { CHUNK = 64 };
 

@@ -354,18 +354,10 @@ static mfs_particles *sub_particles(const mfs_particles *p, const unsigned char 
 static mfs_quad *sub_points(const mfs_quad *q, const unsigned char *qkeep, size_t nl,
                             const int *g2l)
 {
-  mfs_quad *s = mfs_calloc(1, sizeof *s);
+  mfs_quad *s = mfs_quad_empty(q->dim, nl);
   if (!s)
     return NULL;
-  s->dim = q->dim;
   s->n = nl;
-  s->x = mfs_malloc((nl ? nl : 1) * (size_t)q->dim * sizeof *s->x);
-  s->w = mfs_malloc((nl ? nl : 1) * sizeof *s->w);
-  s->node = mfs_malloc((nl ? nl : 1) * sizeof *s->node);
-  if (!s->x || !s->w || !s->node) {
-    mfs_quad_free(s);
-    return NULL;
-  }
   size_t k = 0;
   for (size_t Q = 0; Q < q->n; Q++) {
     if (!qkeep[Q])

@@ -1261,18 +1261,10 @@ static void acc_norms(void *ctx, size_t Q, const double *x, double w, const doub
 static mfs_quad *node_quad(const mfs_static *m, int all, mfs_status *st)
 {
   size_t n = m->p->n;
-  mfs_quad *q = mfs_calloc(1, sizeof *q);
+  mfs_quad *q = mfs_quad_empty(2, n);
   *st = MFS_ENOMEM;
   if (!q)
     return NULL;
-  q->dim = 2;
-  q->x = mfs_malloc(2 * n * sizeof *q->x);
-  q->w = mfs_malloc(n * sizeof *q->w);
-  q->node = mfs_malloc(n * sizeof *q->node);
-  if (!q->x || !q->w || !q->node) {
-    mfs_quad_free(q);
-    return NULL;
-  }
   for (size_t I = 0; I < n; I++)
     if (all || m->evol[I] > 0.0) {
       memcpy(q->x + 2 * q->n, m->p->x + 2 * I, 2 * sizeof(double));

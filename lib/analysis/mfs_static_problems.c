@@ -197,15 +197,8 @@ static int beam_build(mfs_static *m)
    * volumes in [0, L] (cells are in rows of nx - 1, the first G columns ghost) */
   m->pinned = mfs_calloc(p->n, 1);
   m->evol = mfs_calloc(p->n, sizeof *m->evol);
-  m->eq = mfs_calloc(1, sizeof *m->eq);
-  size_t ne = (size_t)(ny - 1) * (size_t)(s->nx - 1) * 25;
+  m->eq = mfs_quad_empty(2, (size_t)(ny - 1) * (size_t)(s->nx - 1) * 25);
   if (!m->pinned || !m->evol || !m->eq)
-    return MFS_ENOMEM;
-  m->eq->dim = 2;
-  m->eq->x = mfs_malloc(2 * ne * sizeof *m->eq->x);
-  m->eq->w = mfs_malloc(ne * sizeof *m->eq->w);
-  m->eq->node = mfs_malloc(ne * sizeof *m->eq->node);
-  if (!m->eq->x || !m->eq->w || !m->eq->node)
     return MFS_ENOMEM;
   for (size_t c = 0; c < p->ncell; c++) {
     if ((int)(c % (size_t)(nx - 1)) < G)
@@ -267,18 +260,10 @@ static mfs_quad *plate_gauss(const mfs_static_spec *s, int nr, int mb, int ng, m
   *st = MFS_ENOMEM;
   if (mfs_static_impl_gauss01(ng, tt, tw) != MFS_OK)
     return NULL;
-  mfs_quad *q = mfs_calloc(1, sizeof *q);
   size_t n = (size_t)nr * 2 * mb * ng * ng;
+  mfs_quad *q = mfs_quad_empty(2, n);
   if (!q)
     return NULL;
-  q->dim = 2;
-  q->x = mfs_malloc(2 * n * sizeof *q->x);
-  q->w = mfs_malloc(n * sizeof *q->w);
-  q->node = mfs_malloc(n * sizeof *q->node);
-  if (!q->x || !q->w || !q->node) {
-    mfs_quad_free(q);
-    return NULL;
-  }
   for (int i = 0; i < nr; i++)
     for (int k = 0; k < 2 * mb; k++)
       for (int gi = 0; gi < ng; gi++)

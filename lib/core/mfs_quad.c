@@ -74,6 +74,23 @@ void mfs_quad_free(mfs_quad *q)
   mfs_free(q);
 }
 
+mfs_quad *mfs_quad_empty(int dim, size_t cap)
+{
+  mfs_quad *q = mfs_calloc(1, sizeof *q);
+  if (!q)
+    return NULL;
+  cap = cap ? cap : 1;
+  q->dim = dim;
+  q->x = mfs_malloc(cap * (size_t)dim * sizeof *q->x);
+  q->w = mfs_malloc(cap * sizeof *q->w);
+  q->node = mfs_malloc(cap * sizeof *q->node);
+  if (!q->x || !q->w || !q->node) {
+    mfs_quad_free(q);
+    return NULL;
+  }
+  return q;
+}
+
 /* Appends one point. */
 static void put(mfs_quad *q, const double *x, double w, int node)
 {
@@ -167,17 +184,10 @@ mfs_quad *mfs_quad_alloc(const mfs_quad_type *t, const mfs_particles *p, mfs_sta
   if ((t->centres || t->gauss_n > 0) && p->ncell == 0) /* a set built without cells */
     goto fail;
   st = MFS_ENOMEM;
-  q = mfs_calloc(1, sizeof *q);
-  if (!q)
-    goto fail;
-  q->dim = p->dim;
   int g = t->gauss_n;
   size_t per = g > 0 ? (size_t)g * (p->dim == 1 ? 1 : (size_t)g) : 1;
-  size_t cap = p->n + p->ncell * per;
-  q->x = mfs_malloc(cap * p->dim * sizeof *q->x);
-  q->w = mfs_malloc(cap * sizeof *q->w);
-  q->node = mfs_malloc(cap * sizeof *q->node);
-  if (!q->x || !q->w || !q->node)
+  q = mfs_quad_empty(p->dim, p->n + p->ncell * per);
+  if (!q)
     goto fail;
 
   if (t->node_share > 0.0)

@@ -80,6 +80,11 @@ typedef struct {
 mfs_quad *mfs_quad_alloc(const mfs_quad_type *t, const mfs_particles *p, mfs_status *status);
 void mfs_quad_free(mfs_quad *q);
 
+/* An empty point set in dimension dim with room for cap points (n = 0; at
+ * least one point's room is allocated), for a caller that fills it; NULL on
+ * out of memory. */
+mfs_quad *mfs_quad_empty(int dim, size_t cap);
+
 #ifdef __cplusplus
 }
 #endif

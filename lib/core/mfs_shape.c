@@ -312,6 +312,27 @@ static int correct_gradient(const mfs_shape_ctx *c, int nn, const double *d, int
 }
 
 
+/* The fast paths' kernel at the scaled offset (px, py) = d / a: W and its
+ * gradient with respect to X (grad_X W = -W'(r) d / r, with W'(r) / r =
+ * cn w'(z) / (z a^2)); cn is the kernel's normalization over a^dim. */
+static inline double fast_cn(const mfs_shape_ctx *c, double ia)
+{
+  double cn = c->kernel->norm[c->dim - 1] * ia;
+  return c->dim == 2 ? cn * ia : cn;
+}
+
+static inline double fast_w(const mfs_shape_ctx *c, double cn, double ia, double px, double py,
+                            double *gx, double *gy)
+{
+  double z = sqrt(px * px + py * py), w = 0.0, dw = 0.0, d2w;
+  if (z < 1.0)
+    c->kernel->eval(z, &w, &dw, &d2w);
+  double t = z > 0.0 ? -cn * dw / z * ia : -cn * d2w * ia;
+  *gx = t * px;
+  *gy = t * py;
+  return cn * w;
+}
+
 /* Linear MLS with gradients only, in 1D or 2D: the case every assembly of a
  * stiffness needs, written with scalars so that it unrolls (about twice as
  * fast as mls_core; same formulas).  The moment matrix is inverted by its
@@ -320,23 +341,14 @@ static int mls_fast_order1(const mfs_shape_ctx *c, int nn, const double *d, doub
                            double *work, double *rcond)
 {
   const int dim = c->dim, os = 1 + dim;
-  const double ia = 1.0 / c->a;
-  double cn = c->kernel->norm[dim - 1] * ia;
-  if (dim == 2)
-    cn *= ia;
+  const double ia = 1.0 / c->a, cn = fast_cn(c, ia);
   /* W, grad W (wrt X) and the scaled offsets p = d/a per neighbour */
   double a00 = 0, a01 = 0, a02 = 0, a11 = 0, a12 = 0, a22 = 0;
   double b00[2] = {0, 0}, b01[2] = {0, 0}, b02[2] = {0, 0}, b11[2] = {0, 0}, b12[2] = {0, 0},
          b22[2] = {0, 0};
   for (int J = 0; J < nn; J++) {
-    double px = d[J * dim] * ia, py = dim == 2 ? d[J * dim + 1] * ia : 0.0;
-    double z = sqrt(px * px + py * py), w = 0.0, dw = 0.0, d2w;
-    if (z < 1.0)
-      c->kernel->eval(z, &w, &dw, &d2w);
-    double W = cn * w;
-    /* grad_X W = -W'(r) d / r, W'(r)/r = cn w'(z) / (z a^2) */
-    double t = z > 0.0 ? -cn * dw / z * ia : -cn * d2w * ia;
-    double gx = t * px, gy = t * py;
+    double px = d[J * dim] * ia, py = dim == 2 ? d[J * dim + 1] * ia : 0.0, gx, gy;
+    double W = fast_w(c, cn, ia, px, py, &gx, &gy);
     double *o = work + 5 * J;
     o[0] = W;
     o[1] = gx;
@@ -436,22 +448,13 @@ static int kb_fast_order1(const mfs_shape_ctx *c, int nn, const double *d, doubl
                           double *work, double *rcond)
 {
   const int dim = c->dim, os = 1 + dim;
-  const double ia = 1.0 / c->a;
-  double cn = c->kernel->norm[dim - 1] * ia;
-  if (dim == 2)
-    cn *= ia;
+  const double ia = 1.0 / c->a, cn = fast_cn(c, ia);
   double S = 0.0, Sx = 0.0, Sy = 0.0;
   for (int J = 0; J < nn; J++) {
     double px = d[J * dim] * ia, py = dim == 2 ? d[J * dim + 1] * ia : 0.0;
-    double z = sqrt(px * px + py * py), w = 0.0, dw = 0.0, d2w;
-    if (z < 1.0)
-      c->kernel->eval(z, &w, &dw, &d2w);
-    double W = cn * w, t = z > 0.0 ? -cn * dw / z * ia : -cn * d2w * ia;
     double *o = work + 3 * J;
-    o[0] = W;
-    o[1] = t * px;
-    o[2] = t * py;
-    S += W;
+    o[0] = fast_w(c, cn, ia, px, py, &o[1], &o[2]);
+    S += o[0];
     Sx += o[1];
     Sy += o[2];
   }
