@@ -585,7 +585,7 @@ void eigs_config_row(FILE *f, const model_cmd *c, const mfs_model_spec *s, const
   fprintf(f, "%s,", c && c->m.convention ? c->m.convention->name : "");
   eigs_put(f, c && c->m.convention ? c->m.smoothing_length : NAN, 0);
   eigs_put(f, c ? c->young : NAN, 0);
-  cli_put_num(f, c && d->dim == 2 ? c->shear : NAN, "shear_modulus");
+  cli_put_num(f, c && d->dim == 2 ? c->shear : NAN, "shear_modulus_pa");
 }
 
 /* ------------------------------------------------------------------ */
