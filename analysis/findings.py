@@ -380,8 +380,8 @@ def fig15(d):
 def eig_rows(d, name):
     rows = read(d, name)
     for r in rows:
-        for c in ("nodes", "dilation", "lambda_max_dx2", "bound_dx2", "alpha_dx2", "paper_alpha_dx2",
-                  "paper_alpha2_dx2", "bound_ratio", "alpha_ratio", "negative_phi_points"):
+        for c in ("nodes", "dilation", "lambda_max_dx2_norm", "bound_dx2_norm", "alpha_dx2_norm", "paper_alpha_dx2_norm",
+                  "paper_alpha2_dx2_norm", "bound_ratio", "alpha_ratio", "negative_phi_points"):
             if c in r:
                 r[c] = num(r[c])
     return rows
@@ -393,8 +393,8 @@ def fig17(d):
         for r in eig_rows(d, f"fig17_{kern}.csv"):
             e = n.setdefault((kern, int(r["nodes"])), {"D": [], "ratio137": [], "bounded124": True})
             e["D"].append(r["dilation"])
-            e["ratio137"].append(r["paper_alpha_dx2"] / r["lambda_max_dx2"])
-            e["bounded124"] &= r["bound_dx2"] >= r["lambda_max_dx2"] * (1 - 1e-12)
+            e["ratio137"].append(r["paper_alpha_dx2_norm"] / r["lambda_max_dx2_norm"])
+            e["bounded124"] &= r["bound_dx2_norm"] >= r["lambda_max_dx2_norm"] * (1 - 1e-12)
     c101 = n[("cubic", 101)]
     low = {k: min(min(v["ratio137"]) for kk, v in n.items() if kk[0] == k) for k in ("cubic", "quartic")}
     all124 = all(v["bounded124"] for v in n.values())
@@ -416,9 +416,9 @@ def fig18(d):
         rows = eig_rows(d, f"fig18_{kern}.csv")
         n[kern] = {
             "D": [r["dilation"] for r in rows],
-            "ratio146": [r["paper_alpha_dx2"] / r["lambda_max_dx2"] for r in rows],
-            "ratio148": [r["paper_alpha2_dx2"] / r["lambda_max_dx2"] for r in rows],
-            "lambda_D5": rows[-1]["lambda_max_dx2"],
+            "ratio146": [r["paper_alpha_dx2_norm"] / r["lambda_max_dx2_norm"] for r in rows],
+            "ratio148": [r["paper_alpha2_dx2_norm"] / r["lambda_max_dx2_norm"] for r in rows],
+            "lambda_D5": rows[-1]["lambda_max_dx2_norm"],
         }
     c = n["cubic"]
     paper = ("Eq. 146 (alpha_1 = 13.30) is the better bound for small D but falls below the numerical "
@@ -439,9 +439,9 @@ def rod(d):
     n = {}
     for f in ROD:
         rows = read(d, f)
-        t = [float(r["t"]) for r in rows]
-        v = [float(r["max_v"]) for r in rows]
-        vc = [abs(float(r["v_center"])) for r in rows]
+        t = [float(r["t_s"]) for r in rows]
+        v = [float(r["max_v_m_s"]) for r in rows]
+        vc = [abs(float(r["v_center_m_s"])) for r in rows]
         n[f] = {"t_end": t[-1], "max_v": max(v), "max_v_center": max(vc), "v0": v[0],
                 "t_10x": next((a for a, b in zip(t, v) if b >= 10 * v[0]), None)}
     e, lag = n[ROD[0]], n[ROD[1]]
@@ -507,8 +507,8 @@ def bar_stats(rows):
     """As tests/test_scenes.sh: -sigma_end on the plateau 5.8-7.3 ms, its peak before 7.3 ms, and
     its least value after 7.5 ms (the exact value there is 0), all over 8e5 Pa."""
     ref = 2 * BAR["v0"] * math.sqrt(BAR["rho"] * BAR["E"])
-    t = [float(r["t"]) for r in rows]
-    s = [-float(r["sigma_end"]) for r in rows]
+    t = [float(r["t_s"]) for r in rows]
+    s = [-float(r["sigma_end_pa"]) for r in rows]
     plateau = [b for a, b in zip(t, s) if 5.8e-3 < a < 7.3e-3]
     return {"peak": max(b for a, b in zip(t, s) if a < 7.3e-3) / ref,
             "after": min(b for a, b in zip(t, s) if a > 7.5e-3) / ref,
@@ -533,10 +533,10 @@ def tsph_viscoplastic(d):
         rows = read(d, f)
         err = 0.0
         for r in rows:
-            t = float(r["t"])
+            t = float(r["t_s"])
             if 5.5e-3 < t < 7.3e-3:
                 a = bar_exact(t, "sigma", plastic=True)
-                err = max(err, abs(-float(r["sigma_end"]) / a - 1))
+                err = max(err, abs(-float(r["sigma_end_pa"]) / a - 1))
         st = bar_stats(rows)
         n[f] = {"max_rel_err": err, "peak": st["peak"]}
     p, s = n[TSPH_V[0]], n[TSPH_V[1]]

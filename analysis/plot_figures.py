@@ -286,11 +286,11 @@ def eig_panel(ax, rows, closed_forms):
     """lambda_max, the element bound (filled where proven, open where some phi_I < 0) and the
     closed forms [(label, column)] against the dilation, log scale. Returns legend handles."""
     D = [r["dilation"] for r in rows]
-    ax.plot(D, [r["lambda_max_dx2"] for r in rows], **style(0, 4, len(D), 1, True))
+    ax.plot(D, [r["lambda_max_dx2_norm"] for r in rows], **style(0, 4, len(D), 1, True))
     st = style(1, 4, len(D), 1)
-    ax.plot(D, [r["bound_dx2"] for r in rows], **dict(st, marker=None))
-    for pts, fc in (([(r["dilation"], r["bound_dx2"]) for r in rows if r["negative_phi_points"] == 0], st["color"]),
-                    ([(r["dilation"], r["bound_dx2"]) for r in rows if r["negative_phi_points"] > 0], "white")):
+    ax.plot(D, [r["bound_dx2_norm"] for r in rows], **dict(st, marker=None))
+    for pts, fc in (([(r["dilation"], r["bound_dx2_norm"]) for r in rows if r["negative_phi_points"] == 0], st["color"]),
+                    ([(r["dilation"], r["bound_dx2_norm"]) for r in rows if r["negative_phi_points"] > 0], "white")):
         if pts:
             ax.plot(*zip(*pts), ls="none", marker="s", color=st["color"], mfc=fc, mew=1.2)
     handles = [Line2D([], [], label="λ_max (ARPACK)", **dict(style(0, 4, 2, 1, True), markevery=None)),
@@ -353,14 +353,14 @@ def fig17(d):
         for c_i, n in enumerate(nodes[:2]):
             ax = fig.axes[3 * r_i + c_i]
             rr = [r for r in rows if int(r["nodes"]) == n]
-            same = max(abs(r["alpha_dx2"] / r["paper_alpha_dx2"] - 1) for r in rr) < 1e-3
-            alpha = rr[0]["alpha_dx2"] * rr[0]["dilation"] ** 2
-            forms = [("eq. 137, printed α = 12.42", "paper_alpha_dx2")]
+            same = max(abs(r["alpha_dx2_norm"] / r["paper_alpha_dx2_norm"] - 1) for r in rr) < 1e-3
+            alpha = rr[0]["alpha_dx2_norm"] * rr[0]["dilation"] ** 2
+            forms = [("eq. 137, printed α = 12.42", "paper_alpha_dx2_norm")]
             if same:
                 note = (f"{kern}: eq. 136's constant computed for this kernel, α = {alpha:.4f}, coincides with "
                         "the printed 12.42: one curve drawn.")
             else:
-                forms.append((f"eq. 137, {kern}'s own α = {alpha:.2f}", "alpha_dx2"))
+                forms.append((f"eq. 137, {kern}'s own α = {alpha:.2f}", "alpha_dx2_norm"))
                 note = f"{kern}: eq. 136's constant for this kernel is α = {alpha:.2f}, not the printed (cubic) 12.42."
             if note not in notes:
                 notes.append(note)
@@ -371,9 +371,9 @@ def fig17(d):
         for j, n in enumerate(nodes):
             rr = [r for r in rows if int(r["nodes"]) == n]
             D = [r["dilation"] for r in rr]
-            ratio_curve(ax, D, [r["paper_alpha_dx2"] / r["lambda_max_dx2"] for r in rr], 2, j == 0,
+            ratio_curve(ax, D, [r["paper_alpha_dx2_norm"] / r["lambda_max_dx2_norm"] for r in rr], 2, j == 0,
                         f"eq. 137 / λ_max, {n} nodes")
-            ratio_curve(ax, D, [r["bound_dx2"] / r["lambda_max_dx2"] for r in rr], 1, j == 0,
+            ratio_curve(ax, D, [r["bound_dx2_norm"] / r["lambda_max_dx2_norm"] for r in rr], 1, j == 0,
                         f"eq. 124 / λ_max, {n} nodes")
         ax.axhline(1.1, color="k", lw=1.0, ls=(0, (2, 2)))
         ax.axhline(1.0, color="k", lw=0.7)
@@ -404,13 +404,13 @@ def fig18(d):
     ax3 = fig.axes[2]
     for i, kern in enumerate(("cubic", "quartic")):
         rows = F.eig_rows(d, f"fig18_{kern}.csv")
-        handles = eig_panel(fig.axes[i], rows, [("eq. 146, α₁ = 13.30", "paper_alpha_dx2"),
-                                                ("eq. 148, α₂ = 15.00", "paper_alpha2_dx2")])
+        handles = eig_panel(fig.axes[i], rows, [("eq. 146, α₁ = 13.30", "paper_alpha_dx2_norm"),
+                                                ("eq. 148, α₂ = 15.00", "paper_alpha2_dx2_norm")])
         fig.axes[i].set_title(f"{letter(i)}{kern} spline")
         D = [r["dilation"] for r in rows]
-        ratio_curve(ax3, D, [r["paper_alpha_dx2"] / r["lambda_max_dx2"] for r in rows], 2, i == 0,
+        ratio_curve(ax3, D, [r["paper_alpha_dx2_norm"] / r["lambda_max_dx2_norm"] for r in rows], 2, i == 0,
                     f"eq. 146 / λ_max, {kern}")
-        ratio_curve(ax3, D, [r["paper_alpha2_dx2"] / r["lambda_max_dx2"] for r in rows], 3, i == 0,
+        ratio_curve(ax3, D, [r["paper_alpha2_dx2_norm"] / r["lambda_max_dx2_norm"] for r in rows], 3, i == 0,
                     f"eq. 148 / λ_max, {kern}")
     ax3.axhline(1.0, color="k", lw=1.0)
     ax3.axvspan(3.5, 5.0, color=UNSTABLE, lw=0, zorder=0)
@@ -448,8 +448,8 @@ def rod(d):
     runs = [(F.ROD[0], "(a) Eulerian kernel, SPH (φ = V W)"), (F.ROD[1], "(b) Lagrangian kernel, MLS")]
     for i, (name, lab) in enumerate(runs):
         rows = F.read(d, name)
-        t = [1e6 * float(r["t"]) for r in rows]
-        for ax, col in ((fig.axes[i], "v_center"), (fig.axes[2], "max_v")):
+        t = [1e6 * float(r["t_s"]) for r in rows]
+        for ax, col in ((fig.axes[i], "v_center_m_s"), (fig.axes[2], "max_v_m_s")):
             st = style(i, 2, len(t), max(1, len(t) // 12), True)
             ax.plot(t, [float(r[col]) for r in rows], label=lab[4:], **st)
         fig.axes[i].set_title(lab)
@@ -506,11 +506,11 @@ def bar_axes(ax_v, ax_s, rows_list, labels, plastic):
     """Velocity at mid-bar (AX_V, may be None) and stress at the fixed end (AX_S) of TSPH runs,
     with the analytic solution of paper 001 section 4.1."""
     for i, (rows, lab) in enumerate(zip(rows_list, labels)):
-        t = [1e3 * float(r["t"]) for r in rows]
+        t = [1e3 * float(r["t_s"]) for r in rows]
         st = style(i, len(rows_list), len(t), 6, True)
         if ax_v is not None:
-            ax_v.plot(t, [float(r["v_mid"]) for r in rows], label=lab, **st)
-        ax_s.plot(t, [-float(r["sigma_end"]) / 1e5 for r in rows], label=lab, **st)
+            ax_v.plot(t, [float(r["v_mid_m_s"]) for r in rows], label=lab, **st)
+        ax_s.plot(t, [-float(r["sigma_end_pa"]) / 1e5 for r in rows], label=lab, **st)
     tt = [i * 1e-5 for i in range(1001)]
     ex = dict(color="k", lw=1.0, ls="-", zorder=1, label="analytic (paper 001 section 4.1)")
     if ax_v is not None:

@@ -290,7 +290,7 @@ rm -rf "$tmp/res"
 # the linear finite element: 1D, D = 1, gauss2, 41 nodes on [0, 1]: lambda_max dx^2 = 4
 run eigs --nodes 41 --length 1 --quadrature gauss2 --dilation 1
 check "eigs linear FE: exit $rc: $(head -c 200 "$err")" test "$rc" -eq 0
-lm=$(awk -F, 'NR == 1 { for (i = 1; i <= NF; i++) h[$i] = i } NR == 2 { printf "%.10f", $h["lambda_max"] / 1600 }' "$out")
+lm=$(awk -F, 'NR == 1 { for (i = 1; i <= NF; i++) h[$i] = i } NR == 2 { printf "%.10f", $h["lambda_max_per_s2"] / 1600 }' "$out")
 check "eigs linear FE: lambda_max dx^2 = '$lm', want 4" awk -v v="$lm" 'BEGIN { d = v - 4; exit !(v != "" && d < 1e-9 && d > -1e-9) }'
 
 # --- particle files (issue 15) --------------------------------------------------
@@ -309,7 +309,7 @@ for q in nodal; do
   for f in lattice lattice_novol; do
     run eigs --particles "$pf/$f.csv" --support 0.2 --quadrature $q --zero-modes -o "$pf/set.csv"
     check "eigs --particles $f.csv: exit $rc: $(head -c 200 "$err")" test "$rc" -eq 0
-    a=$(col "$pf/lat.csv" lambda_max) b=$(col "$pf/set.csv" lambda_max)
+    a=$(col "$pf/lat.csv" lambda_max_per_s2) b=$(col "$pf/set.csv" lambda_max_per_s2)
     check "$f.csv ($q): lambda_max $b, lattice $a (want equal to 1e-12)" close12 "$b" "$a"
     a=$(col "$pf/lat.csv" zero_modes) b=$(col "$pf/set.csv" zero_modes)
     check "$f.csv ($q): $b zero modes, lattice $a" test "$a" = "$b"
@@ -317,26 +317,26 @@ for q in nodal; do
 done
 run eigs --dim 2 --nodes 11,9 --length 1,0.8 --fixed boundary --physics plane-strain --poisson 0.3 -o "$pf/lat.csv"
 run eigs --particles "$pf/lattice.csv" --support 0.2 --fix edge --physics plane-strain --poisson 0.3 -o "$pf/set.csv"
-a=$(col "$pf/lat.csv" lambda_max) b=$(col "$pf/set.csv" lambda_max)
+a=$(col "$pf/lat.csv" lambda_max_per_s2) b=$(col "$pf/set.csv" lambda_max_per_s2)
 check "lattice.csv --fix edge, plane strain: lambda_max $b, lattice --fixed boundary $a" close12 "$b" "$a"
 # the time steps: dt_gershgorin <= dt_certified <= dt_crit, the certified fraction near 1
 run eigs --particles "$pf/lattice.csv" --support 0.23 --fix edge --certify --young 2e9 --poisson 0.3 --density 1000 -o "$pf/set.csv"
 check "eigs --certify: exit $rc: $(head -c 200 "$err")" test "$rc" -eq 0
-g=$(col "$pf/set.csv" dt_gershgorin) ce=$(col "$pf/set.csv" dt_certified) cr=$(col "$pf/set.csv" dt_crit) fr=$(col "$pf/set.csv" certified_fraction)
+g=$(col "$pf/set.csv" dt_gershgorin_s) ce=$(col "$pf/set.csv" dt_certified_s) cr=$(col "$pf/set.csv" dt_crit_s) fr=$(col "$pf/set.csv" certified_fraction)
 check "dt_gershgorin $g <= dt_certified $ce <= dt_crit $cr" awk -v g="$g" -v c="$ce" -v d="$cr" 'BEGIN { exit !(g != "" && g <= c && c <= d) }'
 check "certified fraction $fr in (0.999, 1]" awk -v f="$fr" 'BEGIN { exit !(f > 0.999 && f <= 1) }'
-mu=$(col "$pf/set.csv" shear_modulus)
+mu=$(col "$pf/set.csv" shear_modulus_pa)
 check "--young 2e9 --poisson 0.3: shear modulus $mu, want E/(2(1+nu))" awk -v m="$mu" 'BEGIN { d = m / (2e9 / 2.6) - 1; exit !(d < 1e-14 && d > -1e-14) }'
 # bound: the streamed Gershgorin equals eigs'; bound --certify certifies below dt_crit
 run bound --particles "$pf/lattice.csv" --support 0.23 --fix edge --certify --young 2e9 --poisson 0.3 --density 1000 -o "$pf/bnd.csv"
 check "bound --certify: exit $rc: $(head -c 200 "$err")" test "$rc" -eq 0
-bg=$(col "$pf/bnd.csv" dt_gershgorin) bc=$(col "$pf/bnd.csv" dt_certified)
+bg=$(col "$pf/bnd.csv" dt_gershgorin_s) bc=$(col "$pf/bnd.csv" dt_certified_s)
 check "bound dt_gershgorin $bg = eigs' $g (1e-12)" close12 "$bg" "$g"
 check "bound dt_certified $bc <= dt_crit $cr, above 0.999 dt_crit" awk -v c="$bc" -v d="$cr" 'BEGIN { exit !(c != "" && c <= d && c > 0.999 * d) }'
 # a convention preset: SPHinXsys h -> a = 2h, wendland2
 run eigs --particles "$pf/lattice.csv" --smoothing-length 0.115 --convention sphinxsys -o "$pf/set.csv"
 check "eigs --convention sphinxsys: exit $rc: $(head -c 200 "$err")" test "$rc" -eq 0
-check "sphinxsys h = 0.115: support $(col "$pf/set.csv" support_radius), want 0.23" test "$(col "$pf/set.csv" support_radius)" = 0.23
+check "sphinxsys h = 0.115: support $(col "$pf/set.csv" support_radius_m), want 0.23" test "$(col "$pf/set.csv" support_radius_m)" = 0.23
 check "sphinxsys: kernel $(col "$pf/set.csv" kernel), want wendland2" test "$(col "$pf/set.csv" kernel)" = wendland2
 # lumped masses <= 0: reported with the particle, the results that need them empty, exit 0
 printf 'x,volume\n2.8980211416829427,1\n3.5831232851661508,1\n3.758693438343573,1\n3.7813888591844877,0.001\n7.014895649611761,1\n7.053251366963367,1\n7.227225216560104,1\n7.960414989720876,0.001\n8.358171972261282,0.001\n9.305400074553292,0.001\n' >"$pf/negmass.csv"
@@ -345,7 +345,7 @@ check "negative masses: exit $rc, want 0: $(head -c 200 "$err")" test "$rc" -eq 
 check "negative masses: no note naming the particle on stderr" grep -q "negmass.csv:10" "$err"
 check "negative masses: nonpositive_masses $(col "$pf/set.csv" nonpositive_masses), want 2" test "$(col "$pf/set.csv" nonpositive_masses)" = 2
 check "negative masses: min_mass_particle $(col "$pf/set.csv" min_mass_particle), want 8" test "$(col "$pf/set.csv" min_mass_particle)" = 8
-for c in lambda_max dt_crit dt_gershgorin dt_certified zero_modes; do
+for c in lambda_max_per_s2 dt_crit_s dt_gershgorin_s dt_certified_s zero_modes; do
   check "negative masses: $c = '$(col "$pf/set.csv" $c)', want empty (does not apply)" test -z "$(col "$pf/set.csv" $c)"
 done
 run check --particles "$pf/negmass.csv" --support 3
@@ -356,7 +356,7 @@ run eigs --dim 2 --nodes 9,9 --perturb 0.3 --seed 5 --seeds 5 --zero-modes -o "$
 check "eigs --seeds 5: exit $rc: $(head -c 200 "$err")" test "$rc" -eq 0
 check "eigs --seeds 5: $(($(nlines "$pf/sweep.csv") - 1)) rows, want 5" test "$(nlines "$pf/sweep.csv")" -eq 6
 check "eigs --seeds: seeds 5..9" test "$(col "$pf/sweep.csv" seed 5)" = 9
-lo=$(col "$pf/sweep.csv" lambda_max_min) md=$(col "$pf/sweep.csv" lambda_max_median) hi=$(col "$pf/sweep.csv" lambda_max_max)
+lo=$(col "$pf/sweep.csv" lambda_max_min_per_s2) md=$(col "$pf/sweep.csv" lambda_max_median_per_s2) hi=$(col "$pf/sweep.csv" lambda_max_max_per_s2)
 check "sweep: lambda_max min $lo <= median $md <= max $hi" awk -v a="$lo" -v b="$md" -v c="$hi" 'BEGIN { exit !(a < b && b < c) }'
 # modes for ParaView: 3 spurious modes of periodic nodal integration and the highest
 run eigs --dim 2 --nodes 10,10 --periodic --write-modes "$pf/pm" -o "$pf/pm.csv"
@@ -470,7 +470,7 @@ check "mfstab ${args[*]} -o FILE: output on stdout" test ! -s "$out"
 check "mfstab ${args[*]} -o FILE: no output file" test -s "$csv"
 check "mfstab ${args[*]} -o FILE: temporary file left behind" no_tmp_left
 if [ -s "$csv" ]; then
-  check "header is '$(head -n 1 "$csv")', want 'j,k,K,M'" test "$(head -n 1 "$csv")" = "j,k,K,M"
+  check "header is '$(head -n 1 "$csv")', want 'j,k,K_n_m,M_kg'" test "$(head -n 1 "$csv")" = "j,k,K_n_m,M_kg"
   check "NaN or inf in the output" bash -c "! grep -qiE 'nan|inf' '$csv'"
   k00=$(awk -F, '$1 == 0 && $2 == 0 { printf "%.4f", $3 }' "$csv")
   check "K(0,0) = '$k00', want 0.6507 (Table I, cell integration 2x2)" test "$k00" = "0.6507"
@@ -648,6 +648,10 @@ for p in sys.argv[1:]:
         print(p.rsplit("/", 1)[-1], end=" ")' "$tmp/repro"/*.csv)
   check "mfstab reproduce: CSV rows whose field count is not the header's: $bad_csv" test -z "$bad_csv"
 fi
+if [ -x /usr/bin/python3 ]; then
+  msg=$(/usr/bin/python3 "$(dirname "$0")/check_units.py" "$(dirname "$0")/../docs/commands.md" "$tmp/repro"/*.csv)
+  check "mfstab reproduce: columns without a unit: $msg" test -z "$msg"
+fi
 rm -rf "$tmp/repro"
 
 # --- lambda_max's stopping rule (issue 14): arpack_tol says the tolerance used; 1e-6, enough for
@@ -661,15 +665,46 @@ if [ -s "$tmp/tol_tight.csv" ] && [ -s "$tmp/tol_loose.csv" ]; then
   tt=$(col "$tmp/tol_tight.csv" arpack_tol); lt=$(col "$tmp/tol_loose.csv" arpack_tol)
   check "eigs: arpack_tol '$tt' by default, want 1e-12" awk -v v="$tt" 'BEGIN { exit !(v != "" && v == 1e-12) }'
   check "eigs --arpack-tol 1e-6: arpack_tol '$lt', want 1e-6" awk -v v="$lt" 'BEGIN { exit !(v != "" && v == 1e-6) }'
-  lt_l=$(col "$tmp/tol_tight.csv" lambda_max); ll=$(col "$tmp/tol_loose.csv" lambda_max)
+  lt_l=$(col "$tmp/tol_tight.csv" lambda_max_per_s2); ll=$(col "$tmp/tol_loose.csv" lambda_max_per_s2)
   check "eigs --arpack-tol 1e-6: lambda_max $ll against $lt_l at 1e-12: more than 1e-6 apart" \
     awk -v a="$ll" -v b="$lt_l" 'BEGIN { d = a / b - 1; exit !(a != "" && b != "" && d <= 1e-6 && d >= -1e-6) }'
-  dtt=$(col "$tmp/tol_tight.csv" dt_crit); dtl=$(col "$tmp/tol_loose.csv" dt_crit)
+  dtt=$(col "$tmp/tol_tight.csv" dt_crit_s); dtl=$(col "$tmp/tol_loose.csv" dt_crit_s)
   check "eigs --arpack-tol 1e-6: dt_crit $dtl against $dtt: more than 5e-7 apart" \
     awk -v a="$dtl" -v b="$dtt" 'BEGIN { d = a / b - 1; exit !(a != "" && b != "" && d <= 5e-7 && d >= -5e-7) }'
   mt=$(col "$tmp/tol_tight.csv" arpack_matvecs); ml=$(col "$tmp/tol_loose.csv" arpack_matvecs)
   check "eigs --arpack-tol 1e-6: $ml matvecs, not fewer than the $mt at 1e-12" test "$ml" -lt "$mt"
   echo "eigs arpack_tol: 1e-12 $mt matvecs lambda_max $lt_l, 1e-6 $ml matvecs lambda_max $ll"
+# --- units in the column names (issue 12 item 7, issue 15 item 3) ----------------
+# Every column of every command names its unit (a suffix of the table in
+# docs/commands.md, "Units of the CSV columns"), says _norm, or is in
+# tests/check_units.py's list of dimensionless columns; renamed run probes too.
+if [ -x /usr/bin/python3 ]; then
+  u=$tmp/units
+  mkdir -p "$u"
+  "$M" stencil -o "$u/stencil.csv"
+  "$M" eigs --dim 2 --nodes 8,8 --perturb 0.1 --seeds 2 --certify --zero-modes -o "$u/eigs.csv" 2>/dev/null
+  "$M" eigs --dim 2 --nodes 6,6 --write-modes "$u/m" -o /dev/null
+  "$M" bound --certify -o "$u/bound.csv"
+  "$M" check --dim 2 --nodes 8,8 -o "$u/check.csv" >/dev/null
+  "$M" dispersion --modulus 2e9 --density 1000 --spacing 0.001 --stress 0.1 -o "$u/dispersion.csv"
+  "$M" dispersion --classify --modulus 2e9 --density 1000 --spacing 0.001 -o "$u/classify.csv"
+  "$M" map --stress-range -0.2:0.2:3 --modulus 2e9 --density 1000 --spacing 0.001 -o "$u/map.csv"
+  "$M" static -o "$u/static.csv"
+  "$M" run "$SCENES/rod-tensile.ini" --set time.end=1e-6 -o "$u/run1.csv" \
+    --set output.probes=v_center,u_center,kinetic_energy,potential_energy,total_energy,sigma_end,sigma_center,mode_amp,max_v,v_mid
+  "$M" run "$SCENES/gaussian-pulse.ini" --set time.end=1e-6 -o "$u/run2.csv"
+  "$M" run "$SCENES/plate-pulse-2d.ini" --set time.end=1e-6 -o "$u/run3.csv"
+  n=$(ls "$u"/*.csv | wc -l)
+  check "units: $n of 12 command outputs written" test "$n" -eq 12
+  msg=$(/usr/bin/python3 "$(dirname "$0")/check_units.py" "$(dirname "$0")/../docs/commands.md" "$u"/*.csv)
+  check "units: columns without a unit: $msg" test -z "$msg"
+  check "units: run's header is '$(head -n 1 "$u/run2.csv")', want t_s,v_err_norm,v_mid_m_s" \
+    test "$(head -n 1 "$u/run2.csv")" = "t_s,v_err_norm,v_mid_m_s"
+  # the checker fails on a column without a unit (it can fail)
+  printf 'dx,lambda_max_per_s2\n1,2\n' >"$u/bad.csv"
+  msg=$(/usr/bin/python3 "$(dirname "$0")/check_units.py" "$(dirname "$0")/../docs/commands.md" "$u/bad.csv")
+  check "units: the checker passed a column dx without a unit" test -n "$msg"
+  rm -rf "$u"
 fi
 
 echo "test_cli: $pass passed, $fail failed"

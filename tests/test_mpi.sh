@@ -63,7 +63,7 @@ a = list(csv.DictReader(open(sys.argv[1])))
 b = list(csv.DictReader(open(sys.argv[2])))
 if len(a) != 1 or len(b) != 1 or list(a[0]) != list(b[0]):
     print("rows or columns differ"); sys.exit(1)
-near = {"lambda_max", "omega_max", "dt_crit", "bound_ratio", "gershgorin_ratio"}
+near = {"lambda_max_per_s2", "omega_max_rad_s", "dt_crit_s", "bound_ratio", "gershgorin_ratio"}
 free = {"arpack_iterations", "arpack_matvecs", "arpack_residual"}
 bad = []
 for k in a[0]:

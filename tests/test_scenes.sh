@@ -253,7 +253,7 @@ dtc=$(sed -n 's/.*stability limit \([0-9.e+-]*\) s .*/\1/p' <<<"$err")
 check "plate-pulse-2d dt 1e-6 s above dt_crit $dtc s: exit $rc (want 2), one line, no file: $err" \
       "$rc == 2 && $(grep -c 'time.dt=1e-6: above the central-difference stability limit' <<<"$err") == 1 && $(wc -l <<<"$err") == 1 && $([ -e "$TMP/no.csv" ] && echo 1 || echo 0) == 0 && ${dtc:-0} > 0"
 if [ -n "$dtc" ] && "$MFSTAB" run "$PL" -o "$TMP/pl.csv"; then
-  # columns: t, total_energy E, modified_energy H, potential_energy P, ...
+  # columns: t_s, total_energy_j E, modified_energy_j H, potential_energy_j P, ...
   read -r rows hdev lo hi rat osc drift <<<"$(awk -F, -v dt=2.5e-7 -v dtc="$dtc" '
     NR==2{h0=$3; e0=$2; emin=e0; emax=e0; r2=(dt/dtc)^2}
     NR>1{n++; d=$3/h0-1; d=d<0?-d:d; if(d>hd)hd=d; if($2<emin)emin=$2; if($2>emax)emax=$2

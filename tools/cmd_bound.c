@@ -33,13 +33,14 @@ static const char about[] =
   "is lumped (bound_valid = 1); negative_phi_points counts the points where some phi_I <= 0.\n"
   "Models and options as 'mfstab eigs' (no eigenvalue options).\n"
   "CSV (one row): the configuration columns of 'mfstab eigs', then particles,quadrature_points,\n"
-  "  evaluated_points,bound,bound_valid,negative_phi_points,x_at_bound,y_at_bound,bound_alpha,\n"
-  "  alpha,lambda_fourier,kappa_fourier,theta_fourier,dt_bound,dt_alpha,dt_fourier,dt_rule_p,\n"
-  "  dt_rule_bulk,nonpositive_masses,min_mass,min_mass_particle,lambda_gershgorin,\n"
-  "  dt_gershgorin,x_at_gershgorin,y_at_gershgorin,dt_rule_<peer>,dt_rule_<peer>_unsafe\n"
-  "  (unsafe: 1 above 2/sqrt(lambda_lanczos) >= dt_crit, 0 at most dt_certified, else\n"
+  "  evaluated_points,bound_per_s2,bound_valid,negative_phi_points,x_at_bound_m,y_at_bound_m,\n"
+  "  bound_alpha_per_s2,alpha,lambda_fourier_per_s2,kappa_fourier_norm,theta_fourier_deg,\n"
+  "  dt_bound_s,dt_alpha_s,dt_fourier_s,dt_rule_p_s,\n"
+  "  dt_rule_bulk_s,nonpositive_masses,min_mass_kg,min_mass_particle,lambda_gershgorin_per_s2,\n"
+  "  dt_gershgorin_s,x_at_gershgorin_m,y_at_gershgorin_m,dt_rule_<peer>_s,dt_rule_<peer>_unsafe\n"
+  "  (unsafe: 1 above 2/sqrt(lambda_lanczos_per_s2) >= dt_crit_s, 0 at most dt_certified_s, else\n"
   "  empty; empty without --certify)\n"
-  "  with --certify: lambda_lanczos,sigma_certified,dt_certified,certify_margin,\n"
+  "  with --certify: lambda_lanczos_per_s2,sigma_certified_per_s2,dt_certified_s,certify_margin,\n"
   "  certify_factorizations\n"
   "Under mpirun -np N the Gershgorin and element bounds run over the ranks (docs/parallel.md);\n"
   "--certify needs one process.\n";
@@ -176,14 +177,14 @@ int cmd_bound(int argc, char **argv)
   cli_out_open(&out, par_out_path(c.m.out));
   FILE *f = out.f;
   eigs_config_header(f);
-  fputs(",particles,quadrature_points,evaluated_points,bound,bound_valid,negative_phi_points,"
-        "x_at_bound,y_at_bound,bound_alpha,alpha,lambda_fourier,kappa_fourier,theta_fourier,"
-        "dt_bound,dt_alpha,dt_fourier,dt_rule_p,dt_rule_bulk,nonpositive_masses,min_mass,"
-        "min_mass_particle,lambda_gershgorin,dt_gershgorin,x_at_gershgorin,y_at_gershgorin",
+  fputs(",particles,quadrature_points,evaluated_points,bound_per_s2,bound_valid,negative_phi_points,"
+        "x_at_bound_m,y_at_bound_m,bound_alpha_per_s2,alpha,lambda_fourier_per_s2,kappa_fourier_norm,theta_fourier_deg,"
+        "dt_bound_s,dt_alpha_s,dt_fourier_s,dt_rule_p_s,dt_rule_bulk_s,nonpositive_masses,min_mass_kg,"
+        "min_mass_particle,lambda_gershgorin_per_s2,dt_gershgorin_s,x_at_gershgorin_m,y_at_gershgorin_m",
         f);
   rules_header(f);
   if (c.m.certify)
-    fputs(",lambda_lanczos,sigma_certified,dt_certified,certify_margin,certify_factorizations", f);
+    fputs(",lambda_lanczos_per_s2,sigma_certified_per_s2,dt_certified_s,certify_margin,certify_factorizations", f);
   fputc('\n', f);
   eigs_config_row(f, &c, &c.s, &dv);
   fprintf(f, ",%zu,%zu,%zu,", np, npts, br.evaluated);

@@ -29,15 +29,15 @@ static const char about[] =
   "equivalent infinite lattice (the lattice itself, or the line or square lattice of a set's\n"
   "spacing, at the same support radius; --frame eulerian for the tensile instability).\n"
   "Prints a summary on standard output; -o FILE writes the same as one CSV row: the\n"
-  "configuration columns of 'mfstab eigs', then verdict,lambda_max,dt_crit,dt_certified,\n"
-  "  certified_fraction,certify_margin,dt_gershgorin,gershgorin_ratio,dt_bound,bound_valid,\n"
-  "  negative_phi_points,rule,dt_rule,dt_rule_fraction,dt_rule_unsafe,dt_rule_<peer>,\n"
-  "  dt_rule_<peer>_unsafe,zero_modes,rigid_modes,spurious_modes,lambda_min_nonzero,\n"
-  "  spurious_participation,spurious_location,spurious_peak_particle,spurious_peak_x,\n"
-  "  spurious_peak_y,max_participation,max_location,max_boundary_share,max_peak_particle,\n"
-  "  max_peak_x,max_peak_y,lattice_label,lattice_spurious_zeros,lattice_zero_kappa,\n"
-  "  lattice_zero_theta,lattice_min_omega2,lattice_onset_sigma_tension,\n"
-  "  lattice_onset_sigma_compression,nonpositive_masses,min_mass,min_mass_particle\n"
+  "configuration columns of 'mfstab eigs', then verdict,lambda_max_per_s2,dt_crit_s,\n"
+  "  dt_certified_s,certified_fraction,certify_margin,dt_gershgorin_s,gershgorin_ratio,dt_bound_s,bound_valid,\n"
+  "  negative_phi_points,rule,dt_rule_s,dt_rule_fraction,dt_rule_unsafe,dt_rule_<peer>_s,\n"
+  "  dt_rule_<peer>_unsafe,zero_modes,rigid_modes,spurious_modes,lambda_min_nonzero_per_s2,\n"
+  "  spurious_participation,spurious_location,spurious_peak_particle,spurious_peak_x_m,\n"
+  "  spurious_peak_y_m,max_participation,max_location,max_boundary_share,max_peak_particle,\n"
+  "  max_peak_x_m,max_peak_y_m,lattice_label,lattice_spurious_zeros,lattice_zero_kappa_norm,\n"
+  "  lattice_zero_theta_deg,lattice_min_omega2_norm,lattice_onset_sigma_tension_norm,\n"
+  "  lattice_onset_sigma_compression_norm,nonpositive_masses,min_mass_kg,min_mass_particle\n"
   "verdict: stable, or the labels that apply joined by '+': rank-deficiency (spurious zero-energy\n"
   "modes in the finite model or on the lattice), tensile or compressive (the lattice is unstable\n"
   "under a tension, or a compression smaller than the material's own limit; onsets searched to\n"
@@ -344,17 +344,17 @@ int cmd_check(int argc, char **argv)
   if (c.m.out) {
     FILE *f = out.f;
     eigs_config_header(f);
-    fputs(",verdict,lambda_max,dt_crit,dt_certified,certified_fraction,certify_margin,"
-          "dt_gershgorin,gershgorin_ratio,dt_bound,bound_valid,negative_phi_points,rule,dt_rule,"
+    fputs(",verdict,lambda_max_per_s2,dt_crit_s,dt_certified_s,certified_fraction,certify_margin,"
+          "dt_gershgorin_s,gershgorin_ratio,dt_bound_s,bound_valid,negative_phi_points,rule,dt_rule_s,"
           "dt_rule_fraction,dt_rule_unsafe",
           f);
     rules_header(f);
-    fputs(",zero_modes,rigid_modes,spurious_modes,lambda_min_nonzero,spurious_participation,"
-          "spurious_location,spurious_peak_particle,spurious_peak_x,spurious_peak_y,"
-          "max_participation,max_location,max_boundary_share,max_peak_particle,max_peak_x,"
-          "max_peak_y,lattice_label,lattice_spurious_zeros,lattice_zero_kappa,lattice_zero_theta,"
-          "lattice_min_omega2,lattice_onset_sigma_tension,lattice_onset_sigma_compression,"
-          "nonpositive_masses,min_mass,min_mass_particle\n",
+    fputs(",zero_modes,rigid_modes,spurious_modes,lambda_min_nonzero_per_s2,spurious_participation,"
+          "spurious_location,spurious_peak_particle,spurious_peak_x_m,spurious_peak_y_m,"
+          "max_participation,max_location,max_boundary_share,max_peak_particle,max_peak_x_m,"
+          "max_peak_y_m,lattice_label,lattice_spurious_zeros,lattice_zero_kappa_norm,lattice_zero_theta_deg,"
+          "lattice_min_omega2_norm,lattice_onset_sigma_tension_norm,lattice_onset_sigma_compression_norm,"
+          "nonpositive_masses,min_mass_kg,min_mass_particle\n",
           f);
     eigs_config_row(f, &c, &c.s, &r.dv);
     fputc(',', f);

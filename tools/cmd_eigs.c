@@ -18,12 +18,12 @@
 #include "par.h"
 
 static const char usage[] = "mfstab eigs [options] [-o FILE]";
-static const char about[] =
+static const char about_model[] =
   "Largest eigenvalue lambda_max = omega_max^2 of K v = lambda M v of a finite model (ARPACK;\n"
   "lumped mass: symmetric standard problem M^-1/2 K M^-1/2; consistent mass: generalized mode,\n"
   "CHOLMOD solves with M), with --zero-modes the zero-energy modes (shift-invert ARPACK about\n"
   "sigma = -tol lambda_max), and the critical time step of the undamped central difference\n"
-  "method dt = 2/omega_max (paper 003 eqs 120, 124) from:\n"
+  "method dt = 2/omega_max (paper 003 eqs 120, 124) from (the columns NAME_s, in s):\n"
   "  dt_crit        the exact lambda_max\n"
   "  dt_certified   (--certify) a step proven stable: CHOLMOD factors sigma M - K at\n"
   "                 sigma = 4/dt^2, searched up from lambda_max (rounding margin included)\n"
@@ -41,24 +41,28 @@ static const char about[] =
   "dx = L/N; --perturb F moves every coordinate by up to F dx (seeded); or a particle file\n"
   "(--particles FILE: CSV x[,y][,volume][,group]) with --support A or --smoothing-length H\n"
   "--convention NAME.  Material: 1D --young E (or --modulus); 2D --young E --poisson NU or\n"
-  "--shear-modulus MU; --density RHO.  c = sqrt(modulus/rho), modulus E (1D) or mu (2D).\n"
-  "CSV (one row, or one per seed with --seeds): the configuration dim,nodes_x,nodes_y,\n"
-  "  length_x,length_y,dx,dy,kernel,shape,quadrature,mass,dilation,support_radius,fixed,\n"
-  "  periodic,physics,modulus,density,poisson,wave_speed,source,perturb,seed,convention,\n"
-  "  smoothing_length,young_modulus,shear_modulus, then dofs,lambda_max,omega_max,bound,\n"
-  "  bound_valid,negative_phi_points,bound_alpha,alpha,lambda_fourier,kappa_fourier,\n"
-  "  theta_fourier,dt_crit,dt_bound,dt_alpha,dt_fourier,dt_rule_p,dt_rule_bulk,bound_ratio,\n"
-  "  arpack_iterations,arpack_matvecs,arpack_residual,arpack_tol,particles,nonpositive_masses,\n"
-  "  min_mass,min_mass_particle,min_mass_x,min_mass_y,lambda_gershgorin,dt_gershgorin,\n"
-  "  gershgorin_ratio,"
-  "dt_rule_<peer>,dt_rule_<peer>_unsafe (lammps_smd, sphinxsys, sphinxsys_pwave,\n"
-  "  trixiparticles, dualsphysics)\n"
-  "  with --certify: sigma_certified,dt_certified,certified_fraction,certify_margin,\n"
-  "  certify_factorizations\n"
-  "  with --zero-modes: zero_tol,zero_modes,rigid_modes,spurious_modes,lambda_min_nonzero,\n"
-  "  zero_runs\n"
-  "  with --seeds N: seeds,lambda_max_min,lambda_max_median,lambda_max_max,zero_modes_min,\n"
-  "  zero_modes_median,zero_modes_max,negative_phi_min,negative_phi_median,negative_phi_max,\n"
+  "--shear-modulus MU; --density RHO.  c = sqrt(modulus/rho), modulus E (1D) or mu (2D).\n";
+/* the help in two literals (each under C's 4095 characters) */
+static const char about_csv[] =
+  "CSV (one row, or one per seed with --seeds); units in the names (docs/commands.md):\n"
+  "  the configuration dim,nodes_x,nodes_y,length_x_m,length_y_m,dx_m,dy_m,kernel,shape,\n"
+  "  quadrature,mass,dilation,support_radius_m,fixed,periodic,physics,modulus_pa,\n"
+  "  density_kg_m3,poisson,wave_speed_m_s,source,perturb,seed,convention,smoothing_length_m,\n"
+  "  young_modulus_pa,shear_modulus_pa, then dofs,lambda_max_per_s2,omega_max_rad_s,\n"
+  "  bound_per_s2,bound_valid,negative_phi_points,bound_alpha_per_s2,alpha,\n"
+  "  lambda_fourier_per_s2,kappa_fourier_norm,theta_fourier_deg,dt_crit_s,dt_bound_s,\n"
+  "  dt_alpha_s,dt_fourier_s,dt_rule_p_s,dt_rule_bulk_s,bound_ratio,arpack_iterations,\n"
+  "  arpack_matvecs,arpack_residual,arpack_tol,particles,nonpositive_masses,min_mass_kg,\n"
+  "  min_mass_particle,min_mass_x_m,min_mass_y_m,lambda_gershgorin_per_s2,dt_gershgorin_s,\n"
+  "  gershgorin_ratio,dt_rule_<peer>_s,dt_rule_<peer>_unsafe (lammps_smd, sphinxsys,\n"
+  "  sphinxsys_pwave, trixiparticles, dualsphysics)\n"
+  "  with --certify: sigma_certified_per_s2,dt_certified_s,certified_fraction,\n"
+  "  certify_margin,certify_factorizations\n"
+  "  with --zero-modes: zero_tol,zero_modes,rigid_modes,spurious_modes,\n"
+  "  lambda_min_nonzero_per_s2,zero_runs\n"
+  "  with --seeds N: seeds,lambda_max_min_per_s2,lambda_max_median_per_s2,\n"
+  "  lambda_max_max_per_s2,zero_modes_min,zero_modes_median,zero_modes_max,\n"
+  "  negative_phi_min,negative_phi_median,negative_phi_max,\n"
   "  nonpositive_mass_models (over the N seeds, on every row)\n"
   "Empty cells are undefined values: with a lumped mass m_i <= 0 (MLS on strongly disordered\n"
   "sets) every result that needs positive masses (lambda_max, the time steps from it, the\n"
@@ -526,9 +530,9 @@ void eigs_put_estimates(FILE *f, const eigs_derived *dv, double lf, double kf, d
 
 void eigs_config_header(FILE *f)
 {
-  fputs("dim,nodes_x,nodes_y,length_x,length_y,dx,dy,kernel,shape,quadrature,mass,dilation,"
-        "support_radius,fixed,periodic,physics,modulus,density,poisson,wave_speed,source,perturb,"
-        "seed,convention,smoothing_length,young_modulus,shear_modulus",
+  fputs("dim,nodes_x,nodes_y,length_x_m,length_y_m,dx_m,dy_m,kernel,shape,quadrature,mass,dilation,"
+        "support_radius_m,fixed,periodic,physics,modulus_pa,density_kg_m3,poisson,wave_speed_m_s,source,perturb,"
+        "seed,convention,smoothing_length_m,young_modulus_pa,shear_modulus_pa",
         f);
 }
 
@@ -582,7 +586,7 @@ void eigs_config_row(FILE *f, const model_cmd *c, const mfs_model_spec *s, const
   fprintf(f, "%s,", c && c->m.convention ? c->m.convention->name : "");
   eigs_put(f, c && c->m.convention ? c->m.smoothing_length : NAN, 0);
   eigs_put(f, c ? c->young : NAN, 0);
-  cli_put_num(f, c && d->dim == 2 ? c->shear : NAN, "shear_modulus");
+  cli_put_num(f, c && d->dim == 2 ? c->shear : NAN, "shear_modulus_pa");
 }
 
 /* ------------------------------------------------------------------ */
@@ -755,6 +759,8 @@ int cmd_eigs(int argc, char **argv)
                     {cli_physics_opts, &c.d, sp},
                     {model_opts_table, &c.m, sm},
                     {eig_table, &e, se}};
+  static char about[sizeof about_model + sizeof about_csv];
+  snprintf(about, sizeof about, "%s%s", about_model, about_csv);
   cli_parse(argc, argv, usage, about, g, 4);
   if (e.export_prefix && !*e.export_prefix)
     cli_die(2, "--export-mtx '': expected a file name prefix");
@@ -827,21 +833,21 @@ int cmd_eigs(int argc, char **argv)
   cli_out_open(&out, par_out_path(c.m.out));
   FILE *f = out.f;
   eigs_config_header(f);
-  fputs(",dofs,lambda_max,omega_max,bound,bound_valid,negative_phi_points,bound_alpha,alpha,"
-        "lambda_fourier,kappa_fourier,theta_fourier,dt_crit,dt_bound,dt_alpha,dt_fourier,"
-        "dt_rule_p,dt_rule_bulk,bound_ratio,arpack_iterations,arpack_matvecs,arpack_residual,"
-        "arpack_tol,particles,nonpositive_masses,min_mass,min_mass_particle,min_mass_x,min_mass_y,"
-        "lambda_gershgorin,dt_gershgorin,gershgorin_ratio",
+  fputs(",dofs,lambda_max_per_s2,omega_max_rad_s,bound_per_s2,bound_valid,negative_phi_points,bound_alpha_per_s2,alpha,"
+        "lambda_fourier_per_s2,kappa_fourier_norm,theta_fourier_deg,dt_crit_s,dt_bound_s,dt_alpha_s,dt_fourier_s,"
+        "dt_rule_p_s,dt_rule_bulk_s,bound_ratio,arpack_iterations,arpack_matvecs,arpack_residual,"
+        "arpack_tol,particles,nonpositive_masses,min_mass_kg,min_mass_particle,min_mass_x_m,min_mass_y_m,"
+        "lambda_gershgorin_per_s2,dt_gershgorin_s,gershgorin_ratio",
         f);
   rules_header(f);
   if (c.m.certify)
-    fputs(",sigma_certified,dt_certified,certified_fraction,certify_margin,"
+    fputs(",sigma_certified_per_s2,dt_certified_s,certified_fraction,certify_margin,"
           "certify_factorizations",
           f);
   if (e.zero_modes)
-    fputs(",zero_tol,zero_modes,rigid_modes,spurious_modes,lambda_min_nonzero,zero_runs", f);
+    fputs(",zero_tol,zero_modes,rigid_modes,spurious_modes,lambda_min_nonzero_per_s2,zero_runs", f);
   if (nseeds)
-    fputs(",seeds,lambda_max_min,lambda_max_median,lambda_max_max,zero_modes_min,"
+    fputs(",seeds,lambda_max_min_per_s2,lambda_max_median_per_s2,lambda_max_max_per_s2,zero_modes_min,"
           "zero_modes_median,zero_modes_max,negative_phi_min,negative_phi_median,"
           "negative_phi_max,nonpositive_mass_models",
           f);
@@ -929,8 +935,8 @@ static int fig_file(const char *dir, const char *name, const mfs_kernel_type *k,
   cli_out out;
   cli_out_open_fmt(&out, "%s/%s", dir, name);
   FILE *f = out.f;
-  fputs("figure,kernel,shape,quadrature,mass,nodes,dilation,lambda_max_dx2,bound_dx2,"
-        "alpha_dx2,paper_alpha_dx2,paper_alpha2_dx2,bound_ratio,alpha_ratio,negative_phi_points\n",
+  fputs("figure,kernel,shape,quadrature,mass,nodes,dilation,lambda_max_dx2_norm,bound_dx2_norm,"
+        "alpha_dx2_norm,paper_alpha_dx2_norm,paper_alpha2_dx2_norm,bound_ratio,alpha_ratio,negative_phi_points\n",
         f);
   mfs_model_spec s = mfs_model_spec_default();
   s.disc.kernel = k;

@@ -180,7 +180,7 @@ static void table1(void)
     repro_csv t;
     repro_csv_read(&t, file); /* the whole CLI path is compared */
     size_t cj = repro_col(&t, file, "j"), ck = repro_col(&t, file, "k"),
-           cK = repro_col(&t, file, "K");
+           cK = repro_col(&t, file, "K_n_m");
     int printed = 0, good = 0;
     for (size_t e = 0; e < mfs_paper_table1_len; e++) {
       double want = mfs_paper_table1[e].K[c], got = 0.0;
@@ -251,7 +251,7 @@ static void table2(void)
 {
   cli_out o;
   cli_out_open(&o, repro_path("table2.csv"));
-  fprintf(o.f, "scheme,paper_max_omega2,max_omega2,kappa_at_max\n");
+  fprintf(o.f, "scheme,paper_max_omega2_norm,max_omega2_norm,kappa_at_max_norm\n");
   struct {
     const char *name, *quad;
     mfs_frame frame;
@@ -550,7 +550,7 @@ static double eq119_distance(const char *stencil, const char *disp, double *mass
   repro_csv_read(&s, stencil);
   repro_csv_read(&d, disp);
   size_t sj = repro_col(&s, stencil, "j"), sk = repro_col(&s, stencil, "k"),
-         sK = repro_col(&s, stencil, "K"), sM = repro_col(&s, stencil, "M");
+         sK = repro_col(&s, stencil, "K_n_m"), sM = repro_col(&s, stencil, "M_kg");
   size_t dt = repro_col(&d, disp, "theta_deg"), dk = repro_col(&d, disp, "kappa_norm"),
          dw = repro_col(&d, disp, "omega2_norm");
   double m = 0.0;
@@ -662,7 +662,7 @@ static void star_mass(void)
     double m = NAN;
     for (size_t r = 0; r < t.nrows; r++)
       if (match(&t, "star_mass_stencil.csv", r, "j", "0", "k", "0", NULL))
-        m = repro_num(&t, r, repro_col(&t, "star_mass_stencil.csv", "M"));
+        m = repro_num(&t, r, repro_col(&t, "star_mass_stencil.csv", "M_kg"));
     repro_csv_free(&t);
     fprintf(o.f, "cubic,stress-star,%s,%.16g,%.16g\n", dil[i], m, 2.0 - m);
     if (strcmp(dil[i], "1.75") == 0)
@@ -683,7 +683,7 @@ static double fig17_ratio(void)
 {
   cli_out o;
   cli_out_open(&o, repro_path("fig17_ratio.csv"));
-  fprintf(o.f, "kernel,shape,quadrature,mass,nodes,dilation,lambda_max_dx2,paper_alpha_dx2,"
+  fprintf(o.f, "kernel,shape,quadrature,mass,nodes,dilation,lambda_max_dx2_norm,paper_alpha_dx2_norm,"
                "alpha_ratio\n");
   mfs_model_spec s = mfs_model_spec_default();
   s.disc.kernel = &mfs_kernel_cubic;
@@ -725,8 +725,8 @@ static void figure17(void)
     f = k ? "fig17_quartic.csv" : "fig17_cubic.csv";
     repro_csv_read(&t, f);
     size_t cn = repro_col(&t, f, "nodes"), cd = repro_col(&t, f, "dilation"),
-           cl = repro_col(&t, f, "lambda_max_dx2"), cb = repro_col(&t, f, "bound_dx2"),
-           ca = repro_col(&t, f, "paper_alpha_dx2");
+           cl = repro_col(&t, f, "lambda_max_dx2_norm"), cb = repro_col(&t, f, "bound_dx2_norm"),
+           ca = repro_col(&t, f, "paper_alpha_dx2_norm");
     for (size_t r = 0; r < t.nrows; r++) {
       double n = repro_num(&t, r, cn), D = repro_num(&t, r, cd), l = repro_num(&t, r, cl);
       low137 = fmin(low137, repro_num(&t, r, ca) / l);
@@ -755,8 +755,8 @@ static void figure17(void)
   /* Fig. 18 (E6): the closed forms stay above our lambda_max */
   f = "fig18_cubic.csv";
   repro_csv_read(&t, f);
-  size_t cd = repro_col(&t, f, "dilation"), cl = repro_col(&t, f, "lambda_max_dx2"),
-         c1 = repro_col(&t, f, "paper_alpha_dx2"), c2 = repro_col(&t, f, "paper_alpha2_dx2");
+  size_t cd = repro_col(&t, f, "dilation"), cl = repro_col(&t, f, "lambda_max_dx2_norm"),
+         c1 = repro_col(&t, f, "paper_alpha_dx2_norm"), c2 = repro_col(&t, f, "paper_alpha2_dx2_norm");
   double low146 = INFINITY, r148 = NAN, l5 = NAN;
   for (size_t r = 0; r < t.nrows; r++) {
     double D = repro_num(&t, r, cd), l = repro_num(&t, r, cl);
@@ -782,7 +782,7 @@ static void eq_constants(void)
 {
   cli_out o;
   cli_out_open(&o, repro_path("eq_constants.csv"));
-  fprintf(o.f, "equation,kernel,dim,dilation,printed,alpha,alpha_continuum,h2_lambdaQ_max\n");
+  fprintf(o.f, "equation,kernel,dim,dilation,printed,alpha,alpha_continuum,h2_lambdaQ_max_norm\n");
   double a1 = mfs_bound_alpha(&mfs_kernel_cubic, 1), a2 = mfs_bound_alpha(&mfs_kernel_cubic, 2);
   fprintf(o.f, "136,cubic,1,,%g,%.16g,%.16g,\n", MFS_PAPER_ALPHA, a1,
           mfs_bound_alpha_continuum(&mfs_kernel_cubic, 1));

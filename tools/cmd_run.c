@@ -20,8 +20,11 @@ static const char usage[] = "mfstab run SCENE.ini [--set SECTION.KEY=VALUE ...] 
 /* the help in two literals (each under C's 4095 characters) */
 static const char about_1d[] =
   "Explicit time integration of a 1D rod of particles (lib/time/mfs_solver.h) or a 2D plate\n"
-  "(dim = 2, lib/time/mfs_solver2d.h) described by an INI scene file; writes CSV columns t followed\n"
-  "by the probes of [output] probes.\n"
+  "(dim = 2, lib/time/mfs_solver2d.h) described by an INI scene file; writes CSV columns t_s followed\n"
+  "by the probes of [output] probes, each named with its unit (v_center_m_s, u_center_m,\n"
+  "kinetic_energy_j, potential_energy_j, total_energy_j, modified_energy_j, sigma_end_pa,\n"
+  "sigma_center_pa, mode_amp_m, max_v_m_s, v_mid_m_s, v_err_norm; energies per unit\n"
+  "cross-section in 1D, per unit thickness in 2D).\n"
   "Sections and keys (defaults in parentheses; * required):\n"
   "  [model]          nodes*, length* (m), periodic (0), max_entries (5e8 or what the memory\n"
   "                   holds: a larger plan is refused), dim (1 | 2), formulation (displacement |\n"
@@ -208,6 +211,17 @@ static const probe_fn probes[PROBE_COUNT] = {
   [PROBE_SIGMA_CENTER] = p_sigma_center, [PROBE_MODE_AMP] = p_mode_amp,
   [PROBE_MAX_V] = p_max_v,         [PROBE_V_MID] = p_v_mid,
   [PROBE_V_ERR] = p_v_err,         [PROBE_MODIFIED] = p_modified};
+
+/* The CSV column of each probe: its scene name with its SI unit, or _norm
+ * (docs/commands.md, "Units of the CSV columns").  Energies are per unit
+ * cross-section (1D) or thickness (2D). */
+static const char *const probe_columns[PROBE_COUNT] = {
+  [PROBE_V_CENTER] = "v_center_m_s",          [PROBE_U_CENTER] = "u_center_m",
+  [PROBE_KINETIC] = "kinetic_energy_j",       [PROBE_POTENTIAL] = "potential_energy_j",
+  [PROBE_TOTAL] = "total_energy_j",           [PROBE_SIGMA_END] = "sigma_end_pa",
+  [PROBE_SIGMA_CENTER] = "sigma_center_pa",   [PROBE_MODE_AMP] = "mode_amp_m",
+  [PROBE_MAX_V] = "max_v_m_s",                [PROBE_V_MID] = "v_mid_m_s",
+  [PROBE_V_ERR] = "v_err_norm",               [PROBE_MODIFIED] = "modified_energy_j"};
 
 static void progress(int tty, long k, long nsteps, int *shown)
 {
@@ -428,9 +442,9 @@ scene_result scene_run(scene *sc, int write_csv, const char *csv_path, scene_row
   if (write_csv) {
     cli_out_open(&out, csv_path);
     csv = out.f;
-    fputs("t", csv);
+    fputs("t_s", csv);
     for (int p = 0; p < sc->nprobes; p++)
-      fprintf(csv, ",%s", scene_probe_names[sc->probe[p]]);
+      fprintf(csv, ",%s", probe_columns[sc->probe[p]]);
     fputc('\n', csv);
   }
   int tty = csv && isatty(STDERR_FILENO), shown = -1;

@@ -16,7 +16,8 @@ static const char about[] =
   "particle and the particle at lattice offset (j, k) of an infinite lattice (eq. 114).\n"
   "Offsets are in the lattice basis a1 = (dx, 0), a2 = (0, dy) (square) or (dx/2, sqrt(3)/2 dx)\n"
   "(hex).  Every structurally coupled offset is listed, zeros included.\n"
-  "CSV columns: j,k,K,M\n";
+  "CSV columns: j,k,K_n_m (stiffness, N/m),M_kg (mass, kg), per unit cross-section (1D) or\n"
+  "thickness (2D)\n";
 
 typedef struct {
   const char *out;
@@ -49,7 +50,7 @@ int cmd_stencil(int argc, char **argv)
     cli_die_status(st, &d, disc.dilation, "at a quadrature point of the lattice");
   cli_out out;
   cli_out_open(&out, o.out);
-  fprintf(out.f, "j,k,K,M\n");
+  fprintf(out.f, "j,k,K_n_m,M_kg\n");
   for (size_t i = 0; i < n; i++) {
     char k[32], m[32];
     cli_fmt(k, sizeof k, e[i].K);

@@ -44,7 +44,7 @@ void model_rules(const model_cmd *c, double *dt)
 void rules_header(FILE *f)
 {
   for (int k = 0; mfs_step_rules[k]; k++)
-    fprintf(f, ",dt_rule_%s,dt_rule_%s_unsafe", mfs_step_rules[k]->name, mfs_step_rules[k]->name);
+    fprintf(f, ",dt_rule_%s_s,dt_rule_%s_unsafe", mfs_step_rules[k]->name, mfs_step_rules[k]->name);
 }
 
 void rules_row(FILE *f, const double *dt, double safe_below, double unsafe_above, int last)
@@ -376,8 +376,8 @@ void write_modes(const model_cmd *c, const run_result *r, const char *prefix)
   cli_out_open_fmt(&o, "%s_modes.csv", prefix);
   FILE *f = o.f;
   fprintf(f, "mode,kind,lambda_per_s2,participation_ratio,boundary_share,layer_share,location,"
-             "particle,x,y,fixed,in_layer,%s\n",
-          ps ? "u_x,u_y" : "u");
+             "particle,x_m,y_m,fixed,in_layer,%s\n",
+          ps ? "u_x_norm,u_y_norm" : "u_norm");
   for (int k = 0; k < nm; k++)
     for (size_t I = 0; I < p->n; I++) {
       double ui[2];

@@ -53,7 +53,7 @@ for f in p pn; do
   /usr/bin/time -f "%e %U %S %M" -o "$work/time" "$M" bound --particles "$work/$f.csv" \
     --support 0.002 -o "$work/bound.csv"
   read -r wall us ss kb <"$work/time"
-  dtg=$(awk -F, 'NR == 1 { for (i = 1; i <= NF; i++) h[$i] = i } NR == 2 { print $h["dt_gershgorin"] }' "$work/bound.csv")
+  dtg=$(awk -F, 'NR == 1 { for (i = 1; i <= NF; i++) h[$i] = i } NR == 2 { print $h["dt_gershgorin_s"] }' "$work/bound.csv")
   echo "particles,$n,$variant,mfstab_bound,$wall,$(awk -v a="$us" -v b="$ss" 'BEGIN { print a + b }'),$dtg,$(awk -v k="$kb" 'BEGIN { printf "%.1f", k / 1024 }'),default" >>"$tmp"
 done
 

@@ -9,7 +9,7 @@
 #   analysis/bench/disorder.sh [BUILD_DIR]
 # writes notebooks-data/disorder.csv and, with Debian's python3-matplotlib,
 # notebooks-data/disorder.png.
-# CSV: quadrature,perturb,seeds,lambda_max_min,lambda_max_median,lambda_max_max (dx^2/c^2),
+# CSV: quadrature,perturb,seeds,lambda_max_min_norm,lambda_max_median_norm,lambda_max_max_norm (dx^2/c^2),
 #      zero_modes_min,zero_modes_median,zero_modes_max,negative_phi_min,negative_phi_median,
 #      negative_phi_max,nonpositive_mass_models
 set -euo pipefail
@@ -21,14 +21,14 @@ OUT=${OUT:-notebooks-data/disorder.csv}
 work=$(mktemp -d "${TMPDIR:-/tmp}/disorder.XXXXXX")
 trap 'rm -rf "$work"' EXIT
 mkdir -p "$(dirname "$OUT")"
-echo "quadrature,perturb,seeds,lambda_max_min,lambda_max_median,lambda_max_max,zero_modes_min,zero_modes_median,zero_modes_max,negative_phi_min,negative_phi_median,negative_phi_max,nonpositive_mass_models" >"$work/out.csv"
+echo "quadrature,perturb,seeds,lambda_max_min_norm,lambda_max_median_norm,lambda_max_max_norm,zero_modes_min,zero_modes_median,zero_modes_max,negative_phi_min,negative_phi_median,negative_phi_max,nonpositive_mass_models" >"$work/out.csv"
 dx2=$(awk 'BEGIN { printf "%.17g", (1 / 16) ^ 2 }')
 for q in nodal stress-quad stress-tri; do
   for F in 0 0.05 0.10 0.15 0.20 0.25 0.30 0.35 0.40; do
     if [ "$F" = 0 ]; then
       "$M" eigs --dim 2 --nodes 16,16 --periodic --quadrature $q --zero-modes -o "$work/r.csv"
       awk -F, -v q=$q -v d="$dx2" 'NR == 1 { for (i = 1; i <= NF; i++) h[$i] = i }
-        NR == 2 { l = $h["lambda_max"] * d; z = $h["zero_modes"]; n = $h["negative_phi_points"]
+        NR == 2 { l = $h["lambda_max_per_s2"] * d; z = $h["zero_modes"]; n = $h["negative_phi_points"]
           printf "%s,0,1,%.10g,%.10g,%.10g,%s,%s,%s,%s,%s,%s,%d\n", q, l, l, l, z, z, z, n, n, n, ($h["nonpositive_masses"] > 0 ? 1 : 0) }' \
         "$work/r.csv" >>"$work/out.csv"
     else
@@ -36,7 +36,7 @@ for q in nodal stress-quad stress-tri; do
         -o "$work/r.csv" 2>/dev/null
       awk -F, -v q=$q -v F="$F" -v d="$dx2" 'NR == 1 { for (i = 1; i <= NF; i++) h[$i] = i }
         NR == 2 { f = "%.10g"; printf "%s,%s,%s," f "," f "," f ",%s,%s,%s,%s,%s,%s,%s\n", q, F, $h["seeds"],
-          $h["lambda_max_min"] * d, $h["lambda_max_median"] * d, $h["lambda_max_max"] * d,
+          $h["lambda_max_min_per_s2"] * d, $h["lambda_max_median_per_s2"] * d, $h["lambda_max_max_per_s2"] * d,
           $h["zero_modes_min"], $h["zero_modes_median"], $h["zero_modes_max"], $h["negative_phi_min"],
           $h["negative_phi_median"], $h["negative_phi_max"], $h["nonpositive_mass_models"] }' \
         "$work/r.csv" >>"$work/out.csv"
@@ -59,9 +59,10 @@ for q, (c, m, ls) in style.items():
     r = [x for x in rows if x["quadrature"] == q]
     F = [100 * float(x["perturb"]) for x in r]
     for a, key in zip(ax, ["lambda_max", "zero_modes", "negative_phi"]):
-        lo = [float(x[key + "_min"]) for x in r]
-        md = [float(x[key + "_median"]) for x in r]
-        hi = [float(x[key + "_max"]) for x in r]
+        u = "_norm" if key == "lambda_max" else ""
+        lo = [float(x[key + "_min" + u]) for x in r]
+        md = [float(x[key + "_median" + u]) for x in r]
+        hi = [float(x[key + "_max" + u]) for x in r]
         a.plot(F, md, color=c, marker=m, ls=ls, label=q + " (median)")
         a.fill_between(F, lo, hi, color=c, alpha=0.15)
 ax[0].set_ylabel(r"$\lambda_{max}\,dx^2/c^2$ (normalized)")
