@@ -616,6 +616,9 @@ def disorder(d):
     keys = [("lambda_max", r"$\lambda_{max}\,\Delta x^2/c^2$ (normalized)", "(a) largest eigenvalue"),
             ("zero_modes", r"zero-energy modes ($\lambda \leq 10^{-8}\lambda_{max}$)", "(b) zero-energy modes, rigid included"),
             ("negative_phi", r"quadrature points with some $\phi_I \leq 0$", "(c) points with a negative shape function")]
+    def val(v, k, stat):  # lambda_max_<stat>_norm (normalized) or a count's k_<stat>
+        return float(v.get(f"{k}_{stat}_norm", v.get(f"{k}_{stat}")))
+
     at = {}
     for j, q in enumerate(quads):
         r = [x for x in rows if x["quadrature"] == q]
@@ -623,9 +626,9 @@ def disorder(d):
         st = style(j, len(quads), len(x), every=1)
         st["markevery"] = 1
         for ax, (k, _, _) in zip(fig.axes, keys):
-            ax.fill_between(x, [float(v[k + "_min"]) for v in r], [float(v[k + "_max"]) for v in r],
+            ax.fill_between(x, [val(v, k, "min") for v in r], [val(v, k, "max") for v in r],
                             color=st["color"], alpha=0.15, lw=0)
-            ax.plot(x, [float(v[k + "_median"]) for v in r], label=f"{q} (median)", **st)
+            ax.plot(x, [val(v, k, "median") for v in r], label=f"{q} (median)", **st)
         at[q] = r
     for ax, (_, lab, title) in zip(fig.axes, keys):
         ax.set_xlabel("perturbation F (% of Δx)")
@@ -635,8 +638,8 @@ def disorder(d):
                        title="quadrature", title_fontsize=9)
     z0 = ", ".join(f"{q} {at[q][0]['zero_modes_median']}" for q in quads)
     zf = ", ".join(f"{q} {at[q][1]['zero_modes_max']}" for q in quads)
-    lm = ", ".join(f"{q} {F.g(float(at[q][0]['lambda_max_median']))} to "
-                   f"{F.g(float(at[q][-1]['lambda_max_median']))}" for q in quads)
+    lm = ", ".join(f"{q} {F.g(val(at[q][0], 'lambda_max', 'median'))} to "
+                   f"{F.g(val(at[q][-1], 'lambda_max', 'median'))}" for q in quads)
     ours = (f"zero-energy modes on the regular lattice (F = 0): {z0}; at F = {F.g(100 * float(at[quads[0]][1]['perturb']))}% "
             f"at most {zf} (the rigid mode): disorder removes the spurious modes; median λ_max Δx²/c² from F = 0 to "
             f"{F.g(100 * float(at[quads[0]][-1]['perturb']))}%: {lm}.")
