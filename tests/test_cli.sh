@@ -674,6 +674,8 @@ if [ -s "$tmp/tol_tight.csv" ] && [ -s "$tmp/tol_loose.csv" ]; then
   mt=$(col "$tmp/tol_tight.csv" arpack_matvecs); ml=$(col "$tmp/tol_loose.csv" arpack_matvecs)
   check "eigs --arpack-tol 1e-6: $ml matvecs, not fewer than the $mt at 1e-12" test "$ml" -lt "$mt"
   echo "eigs arpack_tol: 1e-12 $mt matvecs lambda_max $lt_l, 1e-6 $ml matvecs lambda_max $ll"
+fi
+
 # --- units in the column names (issue 12 item 7, issue 15 item 3) ----------------
 # Every column of every command names its unit (a suffix of the table in
 # docs/commands.md, "Units of the CSV columns"), says _norm, or is in
