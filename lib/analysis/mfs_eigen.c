@@ -8,6 +8,8 @@
 #include <string.h>
 #include <suitesparse/cholmod.h>
 
+#include "mfs_cholmod.h"
+
 #include "mfs_lapack.h"
 #include "mfs_status.h"
 
@@ -129,37 +131,6 @@ typedef struct {
   cholmod_dense *B, *X, *Y, *E;
 } chol_solver;
 
-/* The upper triangle of a symmetric CSR matrix as a CHOLMOD matrix (the
- * rows of the CSR matrix are the columns of its transpose, which is itself). */
-static cholmod_sparse *upper_of(const mfs_csr *A, cholmod_common *c)
-{
-  size_t n = A->nrow, nnz = 0;
-  for (size_t j = 0; j < n; j++)
-    for (size_t e = A->ptr[j]; e < A->ptr[j + 1]; e++)
-      nnz += (size_t)A->idx[e] <= j;
-  cholmod_sparse *S = cholmod_l_allocate_sparse(n, n, nnz, 0, 1, 1, CHOLMOD_REAL, c);
-  if (!S)
-    return NULL;
-  SuiteSparse_long *Sp = S->p, *Si = S->i;
-  double *Sx = S->x;
-  size_t pos = 0;
-  Sp[0] = 0;
-  for (size_t j = 0; j < n; j++) {
-    for (size_t e = A->ptr[j]; e < A->ptr[j + 1]; e++)
-      if ((size_t)A->idx[e] <= j) {
-        Si[pos] = A->idx[e];
-        Sx[pos] = A->val[e];
-        pos++;
-      }
-    Sp[j + 1] = (SuiteSparse_long)pos;
-  }
-  if (!cholmod_l_sort(S, c)) {
-    cholmod_l_free_sparse(&S, c);
-    return NULL;
-  }
-  return S;
-}
-
 static cholmod_sparse *diag_of(size_t n, const double *d, cholmod_common *c)
 {
   cholmod_sparse *S = cholmod_l_allocate_sparse(n, n, n, 1, 1, 1, CHOLMOD_REAL, c);
@@ -192,9 +163,7 @@ static void chol_free(chol_solver *s)
 static void chol_start(chol_solver *s)
 {
   memset(s, 0, sizeof *s);
-  cholmod_l_start(&s->c);
-  s->c.print = 0; /* the library never prints */
-  s->c.error_handler = NULL;
+  mfs_cholmod_start(&s->c);
   s->started = 1;
 }
 
@@ -204,12 +173,12 @@ static int chol_factor(chol_solver *s, const mfs_csr *A, const mfs_csr *B, const
                        double shift, mfs_eig_info *info)
 {
   cholmod_common *c = &s->c;
-  cholmod_sparse *Au = upper_of(A, c), *Bu = NULL, *F = NULL;
+  cholmod_sparse *Au = mfs_cholmod_upper(A, c), *Bu = NULL, *F = NULL;
   mfs_status st = MFS_ENOMEM;
   if (!Au)
     goto done;
   if (B || Bdiag) {
-    Bu = B ? upper_of(B, c) : diag_of(A->nrow, Bdiag, c);
+    Bu = B ? mfs_cholmod_upper(B, c) : diag_of(A->nrow, Bdiag, c);
     if (!Bu)
       goto done;
     double al[2] = {1.0, 0.0}, be[2] = {shift, 0.0};
@@ -838,16 +807,14 @@ static void cert_free(cert_ws *w)
 static int cert_init(cert_ws *w, const mfs_pencil *P)
 {
   memset(w, 0, sizeof *w);
-  cholmod_l_start(&w->c);
-  w->c.print = 0; /* the library never prints */
-  w->c.error_handler = NULL;
+  mfs_cholmod_start(&w->c);
   w->c.supernodal = CHOLMOD_SUPERNODAL; /* LL', stops at the first bad pivot */
   /* nested dissection: 20-25% less fill than AMD on these 2D stencils, and
    * 10-25% less time (measured: analysis/bench/bench_check.c) */
   w->c.nmethods = 1;
   w->c.method[0].ordering = CHOLMOD_NESDIS;
-  w->Ku = upper_of(P->K, &w->c);
-  w->Mu = P->M ? upper_of(P->M, &w->c) : diag_of(P->K->nrow, P->m, &w->c);
+  w->Ku = mfs_cholmod_upper(P->K, &w->c);
+  w->Mu = P->M ? mfs_cholmod_upper(P->M, &w->c) : diag_of(P->K->nrow, P->m, &w->c);
   return w->Ku && w->Mu ? MFS_OK : MFS_ENOMEM;
 }
 

@@ -8,6 +8,8 @@
 #include <suitesparse/cholmod.h>
 #include <suitesparse/umfpack.h>
 
+#include "mfs_cholmod.h"
+
 static double inf_norm_rows(const mfs_csr *A)
 {
   double m = 0.0;
@@ -59,58 +61,47 @@ static int ordering_skipped(const cholmod_common *c)
   return metis_tried && c->method[2].lnz < 0.0;
 }
 
+/* The Cholesky factor of the symmetric positive definite S (upper
+ * triangle) in *L: MFS_OK, MFS_ESYSTEM (not positive definite) or
+ * MFS_ENOMEM; info->lib_status is CHOLMOD's status. */
+static int factor_spd(cholmod_sparse *S, cholmod_common *c, cholmod_factor **L,
+                      mfs_spsolve_info *info)
+{
+  *L = cholmod_l_analyze(S, c);
+  if (!*L || ordering_skipped(c))
+    return MFS_ENOMEM;
+  int ok = cholmod_l_factorize(S, *L, c);
+  info->lib_status = c->status;
+  if (!ok || c->status == CHOLMOD_OUT_OF_MEMORY)
+    return MFS_ENOMEM;
+  if (c->status == CHOLMOD_NOT_POSDEF || (*L)->minor < (*L)->n)
+    return MFS_ESYSTEM;
+  if (!(*L)->is_super && !(*L)->is_ll) { /* simplicial LDL': positive definite is D > 0 */
+    const SuiteSparse_long *Lp = (*L)->p;
+    const double *Lx = (*L)->x;
+    for (size_t j = 0; j < (*L)->n; j++)
+      if (!(Lx[Lp[j]] > 0.0))
+        return MFS_ESYSTEM;
+  }
+  return MFS_OK;
+}
+
 static int cholmod_solve_fn(const mfs_csr *A, const double *b, double *x, mfs_spsolve_info *info)
 {
   cholmod_common c;
-  cholmod_l_start(&c);
-  c.print = 0; /* the library never prints */
-  c.error_handler = NULL;
+  mfs_cholmod_start(&c);
   cholmod_sparse *S = NULL;
   cholmod_factor *L = NULL;
   cholmod_dense *B = NULL, *X = NULL;
   int st = MFS_ENOMEM;
-  size_t n = A->nrow, nnz = 0;
-  for (size_t j = 0; j < n; j++)
-    for (size_t e = A->ptr[j]; e < A->ptr[j + 1]; e++)
-      nnz += (size_t)A->idx[e] <= j;
-  /* the upper triangle: column j of the symmetric matrix is its row j */
-  S = cholmod_l_allocate_sparse(n, n, nnz, 0, 1, 1, CHOLMOD_REAL, &c);
+  size_t n = A->nrow;
+  S = mfs_cholmod_upper(A, &c);
   if (!S)
     goto done;
-  SuiteSparse_long *Sp = S->p, *Si = S->i;
-  double *Sx = S->x;
-  size_t pos = 0;
-  Sp[0] = 0;
-  for (size_t j = 0; j < n; j++) {
-    for (size_t e = A->ptr[j]; e < A->ptr[j + 1]; e++)
-      if ((size_t)A->idx[e] <= j) {
-        Si[pos] = A->idx[e];
-        Sx[pos++] = A->val[e];
-      }
-    Sp[j + 1] = (SuiteSparse_long)pos;
-  }
-  if (!cholmod_l_sort(S, &c))
+  st = factor_spd(S, &c, &L, info);
+  if (st != MFS_OK)
     goto done;
-  L = cholmod_l_analyze(S, &c);
-  if (!L || ordering_skipped(&c))
-    goto done;
-  int ok = cholmod_l_factorize(S, L, &c);
-  info->lib_status = c.status;
-  if (!ok || c.status == CHOLMOD_OUT_OF_MEMORY)
-    goto done;
-  if (c.status == CHOLMOD_NOT_POSDEF || L->minor < L->n) {
-    st = MFS_ESYSTEM;
-    goto done;
-  }
-  if (!L->is_super && !L->is_ll) { /* simplicial LDL': positive definite is D > 0 */
-    const SuiteSparse_long *Lp = L->p;
-    const double *Lx = L->x;
-    for (size_t j = 0; j < L->n; j++)
-      if (!(Lx[Lp[j]] > 0.0)) {
-        st = MFS_ESYSTEM;
-        goto done;
-      }
-  }
+  st = MFS_ENOMEM;
   info->rcond = cholmod_l_rcond(L, &c);
   info->factor_nnz = c.lnz;
   B = cholmod_l_allocate_dense(n, 1, n, CHOLMOD_REAL, &c);
@@ -170,9 +161,7 @@ static int cholmod_constrained_fn(const mfs_csr *A, const mfs_csr *C, const doub
                                   mfs_spsolve_info *info)
 {
   cholmod_common c;
-  cholmod_l_start(&c);
-  c.print = 0;
-  c.error_handler = NULL;
+  mfs_cholmod_start(&c);
   size_t n = A->nrow, m = C->nrow;
   int st = MFS_ENOMEM;
   cholmod_sparse *Af = NULL, *Ct = NULL, *CtC = NULL, *Mf = NULL, *M = NULL;
@@ -199,26 +188,10 @@ static int cholmod_constrained_fn(const mfs_csr *A, const mfs_csr *C, const doub
   cholmod_l_free_sparse(&Mf, &c);
   if (!M)
     goto done;
-  L = cholmod_l_analyze(M, &c);
-  if (!L || ordering_skipped(&c))
+  st = factor_spd(M, &c, &L, info);
+  if (st != MFS_OK)
     goto done;
-  int ok = cholmod_l_factorize(M, L, &c);
-  info->lib_status = c.status;
-  if (!ok || c.status == CHOLMOD_OUT_OF_MEMORY)
-    goto done;
-  if (c.status == CHOLMOD_NOT_POSDEF || L->minor < L->n) {
-    st = MFS_ESYSTEM;
-    goto done;
-  }
-  if (!L->is_super && !L->is_ll) {
-    const SuiteSparse_long *Lp = L->p;
-    const double *Lx = L->x;
-    for (size_t j = 0; j < L->n; j++)
-      if (!(Lx[Lp[j]] > 0.0)) {
-        st = MFS_ESYSTEM;
-        goto done;
-      }
-  }
+  st = MFS_ENOMEM;
   double rcL = cholmod_l_rcond(L, &c);
   info->factor_nnz = c.lnz;
   /* Z = M^-1 C^T (n x m), y = M^-1 (b + rho C^T g) */
