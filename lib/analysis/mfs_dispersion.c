@@ -3,6 +3,16 @@
 
 #include <complex.h>
 #undef I /* particle indices are called I here */
+#ifndef CMPLX /* C11's; clang 14 with glibc 2.36 does not define it */
+#define CMPLX(x, y) mfs_cmplx((x), (y))
+static inline double complex mfs_cmplx(double re, double im)
+{
+  double complex z;
+  ((double *)&z)[0] = re; /* a complex is an array of two reals (C11 6.2.5) */
+  ((double *)&z)[1] = im;
+  return z;
+}
+#endif
 #include <lapacke.h>
 #include <math.h>
 #include <stdlib.h>
