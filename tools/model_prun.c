@@ -96,12 +96,7 @@ void model_prun(const model_cmd *c, const run_opts *o, run_result *r)
     st = mfs_peig_max(pm, &eo, &r->lambda, &info);
     if (st != MFS_OK)
       die_peig(st, &info);
-    if (!(r->lambda > 0.0))
-      cli_die(1, "lambda_max = %g: the stiffness has no positive eigenvalue", r->lambda);
-    r->have_lambda = 1;
-    r->iters = info.iterations;
-    r->matvecs = info.matvecs;
-    r->resid = info.residual;
+    run_take_lambda(r, &info);
   }
   mfs_pmodel_free(pm);
 }

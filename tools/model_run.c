@@ -60,6 +60,16 @@ void rules_row(FILE *f, const double *dt, double safe_below, double unsafe_above
   }
 }
 
+void run_take_lambda(run_result *r, const mfs_eig_info *info)
+{
+  if (!(r->lambda > 0.0))
+    cli_die(1, "lambda_max = %g: the stiffness has no positive eigenvalue", r->lambda);
+  r->have_lambda = 1;
+  r->iters = info->iterations;
+  r->matvecs = info->matvecs;
+  r->resid = info->residual;
+}
+
 void model_run(const model_cmd *c, const run_opts *o, run_result *r)
 {
   if (o->distributed) {
@@ -123,12 +133,7 @@ void model_run(const model_cmd *c, const run_opts *o, run_result *r)
   st = mfs_eig_max(&P, &eo, &r->lambda, r->vmax, &info);
   if (st != MFS_OK)
     die_eig(st, &info, "lambda_max");
-  if (!(r->lambda > 0.0))
-    cli_die(1, "lambda_max = %g: the stiffness has no positive eigenvalue", r->lambda);
-  r->have_lambda = 1;
-  r->iters = info.iterations;
-  r->matvecs = info.matvecs;
-  r->resid = info.residual;
+  run_take_lambda(r, &info);
 
   if (o->zero_modes) {
     mfs_zero_opts zo = {o->tol, (int)o->nev, 0, o->keep};

@@ -52,6 +52,9 @@ typedef struct {
  * numerical failure, with its exit code). */
 void model_run(const model_cmd *c, const run_opts *o, run_result *r);
 void run_result_free(run_result *r);
+/* r->lambda, computed with info: dies (exit 1) unless it is positive, else
+ * marks it computed and keeps the ARPACK counts and residual. */
+void run_take_lambda(run_result *r, const mfs_eig_info *info);
 
 /* The same analyses over the MPI ranks (tools/model_prun.c, lib/analysis/
  * mfs_peigs.h): the element bound, the lumped masses, the Gershgorin bound

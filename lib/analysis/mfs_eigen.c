@@ -275,11 +275,7 @@ static int arpack_run(arpack_job *j, mfs_eig_info *info)
     dsaupd_(&ido, &j->bmat, &n, j->which, &nev, &j->tol, resid, &ncv, v, &ldv, iparam, ipntr,
             workd, workl, &lworkl, &ainfo, 1, 2);
     if (mfs_lapack_last()->count > 0) {
-      st = MFS_EARPACK;
-      if (info) {
-        info->info = mfs_lapack_last()->info;
-        info->routine = "dsaupd (LAPACK)";
-      }
+      st = mfs_eig_info_fail(info, MFS_EARPACK, "dsaupd (LAPACK)", mfs_lapack_last()->info);
       goto done;
     }
     if (ido == -1 || ido == 1 || ido == 2) {
@@ -298,19 +294,11 @@ static int arpack_run(arpack_job *j, mfs_eig_info *info)
     info->runs++;
   }
   if (ainfo == 1) {
-    st = MFS_ENOCONV;
-    if (info) {
-      info->info = 1;
-      info->routine = "dsaupd";
-    }
+    st = mfs_eig_info_fail(info, MFS_ENOCONV, "dsaupd", 1);
     goto done;
   }
   if (ainfo != 0) {
-    st = MFS_EARPACK;
-    if (info) {
-      info->info = ainfo;
-      info->routine = "dsaupd";
-    }
+    st = mfs_eig_info_fail(info, MFS_EARPACK, "dsaupd", ainfo);
     goto done;
   }
   int rvec = 1, einfo = 0;
@@ -319,11 +307,7 @@ static int arpack_run(arpack_job *j, mfs_eig_info *info)
   if (einfo == 0 && mfs_lapack_last()->count > 0)
     einfo = -mfs_lapack_last()->info - 1000; /* a LAPACK argument error inside dseupd */
   if (einfo != 0) {
-    st = MFS_EARPACK;
-    if (info) {
-      info->info = einfo;
-      info->routine = "dseupd";
-    }
+    st = mfs_eig_info_fail(info, MFS_EARPACK, "dseupd", einfo);
     goto done;
   }
   /* ascending eigenvalues with their vectors (selection sort: nev is small) */
@@ -340,11 +324,7 @@ static int arpack_run(arpack_job *j, mfs_eig_info *info)
   for (int i = 0; i < nev; i++) {
     j->d[i] = dd[ord[i]];
     if (!isfinite(j->d[i])) {
-      st = MFS_EARPACK;
-      if (info) {
-        info->info = 0;
-        info->routine = "dseupd";
-      }
+      st = mfs_eig_info_fail(info, MFS_EARPACK, "dseupd", 0);
       goto done;
     }
     if (j->z)

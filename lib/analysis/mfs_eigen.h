@@ -81,6 +81,18 @@ typedef struct {
                          returned pairs, lambda_ref = max(|lambda|, lambda_max) */
 } mfs_eig_info;
 
+/* Records the failing call (routine, its code) in info, which may be NULL;
+ * returns st.  The eigensolvers' one way to report an ARPACK failure. */
+static inline mfs_status mfs_eig_info_fail(mfs_eig_info *info, mfs_status st, const char *routine,
+                                           int code)
+{
+  if (info) {
+    info->info = code;
+    info->routine = routine;
+  }
+  return st;
+}
+
 /* Largest eigenvalue of K v = lambda M v.  v (length n, or NULL) receives
  * its eigenvector, M-normalized.  Returns MFS_OK; MFS_EINVAL (n < 2, both or
  * neither mass given, a lumped mass entry <= 0 or non-finite); MFS_ENOCONV

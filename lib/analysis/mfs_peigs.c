@@ -1122,11 +1122,7 @@ mfs_status mfs_peig_max(const mfs_pmodel *pm, const mfs_eig_opts *opts, double *
     pdsaupd_(&pm->fcomm, &ido, "I", &n, "LA", &nev, &tol, resid, &ncv, v, &ldv, iparam, ipntr,
              workd, workl, &lworkl, &ainfo, 1, 2);
     if (mfs_lapack_last()->count > 0) { /* LAPACK inside, on the replicated small problem */
-      st = MFS_EARPACK;
-      if (info) {
-        info->info = mfs_lapack_last()->info;
-        info->routine = "pdsaupd (LAPACK)";
-      }
+      st = mfs_eig_info_fail(info, MFS_EARPACK, "pdsaupd (LAPACK)", mfs_lapack_last()->info);
       goto done;
     }
     if (ido != -1 && ido != 1)
@@ -1147,11 +1143,7 @@ mfs_status mfs_peig_max(const mfs_pmodel *pm, const mfs_eig_opts *opts, double *
     info->runs = 1;
   }
   if (ainfo != 0) {
-    st = ainfo == 1 ? MFS_ENOCONV : MFS_EARPACK;
-    if (info) {
-      info->info = ainfo;
-      info->routine = "pdsaupd";
-    }
+    st = mfs_eig_info_fail(info, ainfo == 1 ? MFS_ENOCONV : MFS_EARPACK, "pdsaupd", ainfo);
     goto done;
   }
   int rvec = 1, einfo = 0;
@@ -1160,11 +1152,7 @@ mfs_status mfs_peig_max(const mfs_pmodel *pm, const mfs_eig_opts *opts, double *
   if (einfo == 0 && mfs_lapack_last()->count > 0)
     einfo = -1000 - mfs_lapack_last()->info;
   if (einfo != 0 || !isfinite(d[0])) {
-    st = MFS_EARPACK;
-    if (info) {
-      info->info = einfo;
-      info->routine = "pdseupd";
-    }
+    st = mfs_eig_info_fail(info, MFS_EARPACK, "pdseupd", einfo);
     goto done;
   }
   *lambda = d[0];

@@ -91,6 +91,26 @@ static double rcond_from(int m, const double *A, const double *Ainv)
   return isfinite(rc) ? rc : 0.0;
 }
 
+/* Cholesky factor L (lower triangle written) and explicit inverse of the
+ * m x m SPD moment matrix A, with its 1-norm reciprocal condition number;
+ * MFS_ESINGULAR when A is not positive definite or *rcond < rcond_min. */
+static mfs_status moment_inverse(int m, const double *A, double rcond_min, double *L, double *Ainv,
+                                 double *rcond)
+{
+  *rcond = 0.0;
+  if (cholesky(m, A, L))
+    return MFS_ESINGULAR;
+  for (int j = 0; j < m; j++) {
+    double e[MAXM] = {0};
+    e[j] = 1.0;
+    chol_solve(m, L, e);
+    for (int i = 0; i < m; i++)
+      Ainv[i * m + j] = e[i];
+  }
+  *rcond = rcond_from(m, A, Ainv);
+  return *rcond < rcond_min || *rcond == 0.0 ? MFS_ESINGULAR : MFS_OK;
+}
+
 /* Moving least squares with basis [1] (m = 1, Shepard) or [1, (Y - X)/a]
  * (m = 1 + dim), weights mult_J W_J.  Derivatives by differentiating
  * A gamma = p(X) (Belytschko et al. 1996): gamma' = A^-1 (p' - A' gamma), ...
@@ -129,18 +149,7 @@ static int mls_core(const mfs_shape_ctx *c, int m, int nn, const double *d, cons
         d2A[q][i * m + j] = d2A[q][j * m + i];
     }
   double L[MAXM * MAXM] = {0}, Ainv[MAXM * MAXM];
-  *rcond = 0.0;
-  if (cholesky(m, A, L))
-    return MFS_ESINGULAR;
-  for (int j = 0; j < m; j++) {
-    double e[MAXM] = {0};
-    e[j] = 1.0;
-    chol_solve(m, L, e);
-    for (int i = 0; i < m; i++)
-      Ainv[i * m + j] = e[i];
-  }
-  *rcond = rcond_from(m, A, Ainv);
-  if (*rcond < c->rcond_min || *rcond == 0.0)
+  if (moment_inverse(m, A, c->rcond_min, L, Ainv, rcond) != MFS_OK)
     return MFS_ESINGULAR;
 
   double g[MAXM], dg[MAXD][MAXM], d2g[MAXD * MAXD][MAXM];
@@ -1092,18 +1101,7 @@ static int cd2_eval(const mfs_shape_ctx *c, int nn, const double *d, const doubl
       }
   }
   double L[MAXM * MAXM] = {0}, Ainv[MAXM * MAXM];
-  *rcond = 0.0;
-  if (cholesky(m, A, L))
-    return MFS_ESINGULAR;
-  for (int j = 0; j < m; j++) {
-    double e[MAXM] = {0};
-    e[j] = 1.0;
-    chol_solve(m, L, e);
-    for (int i = 0; i < m; i++)
-      Ainv[i * m + j] = e[i];
-  }
-  *rcond = rcond_from(m, A, Ainv);
-  if (*rcond < c->rcond_min || *rcond == 0.0)
+  if (moment_inverse(m, A, c->rcond_min, L, Ainv, rcond) != MFS_OK)
     return MFS_ESINGULAR;
   for (int J = 0; J < nn; J++) {
     const double *k = work + J * st;

@@ -342,37 +342,52 @@ static inline void row_zero(mfs_row *r, size_t s)
       r->G[s * (size_t)r->gsz + k] = 0.0;
 }
 
-mfs_status mfs_row_assemble(mfs_row *r, const mfs_plan *pl, const mfs_forms *f, size_t I)
+/* The points of particle I into row r (r->len, r->col and r->mark set up):
+ * with grow, a column met for the first time is appended; without, every
+ * neighbour must already have a mark (a column of the pattern or the discard
+ * slot r->cap), and one without is MFS_EINVAL. */
+static mfs_status row_points(mfs_row *r, const mfs_plan *pl, const mfs_forms *f, size_t I, int grow)
 {
-  for (size_t s = 0; s < r->len; s++) /* reset the marks of the last row */
-    r->mark[r->col[s]] = -1;
-  r->len = 0;
-  r->lump = 0.0;
   size_t nq;
   const int *Qs;
   mfs_plan_particle_points(pl, I, &nq, &Qs);
   int *col = r->pcol, st = MFS_OK;
   const double rho = f->lumped_density;
+  r->lump = 0.0;
   for (size_t t = 0; t < nq && st == MFS_OK; t++) {
     mfs_point pt;
     row_point(r, (size_t)Qs[t], &pt);
     size_t iI = 0;
-    for (size_t e = 0; e < pt.nn; e++) { /* columns met for the first time, and I's entry */
+    for (size_t e = 0; e < pt.nn; e++) {
       int J = pt.idx[e];
       iI = J == (int)I ? e : iI;
-      if (r->mark[J] < 0) {
+      if (grow && r->mark[J] < 0) { /* a column met for the first time */
         size_t s = r->len++;
         r->mark[J] = (int)s;
         r->col[s] = J;
         row_zero(r, s);
       }
       col[e] = r->mark[J];
+      if (col[e] < 0) { /* not in the pattern */
+        st = MFS_EINVAL;
+        break;
+      }
     }
+    if (st != MFS_OK)
+      break;
     if (rho != 0.0) /* as mfs_assemble_mass_lumped's loop over the points adds it */
       r->lump += rho * pt.w * pt.phi[iI * (size_t)pt.ncomp];
     st = add_point(r, pl, f, I, &pt, iI, col);
   }
   return st;
+}
+
+mfs_status mfs_row_assemble(mfs_row *r, const mfs_plan *pl, const mfs_forms *f, size_t I)
+{
+  for (size_t s = 0; s < r->len; s++) /* reset the marks of the last row */
+    r->mark[r->col[s]] = -1;
+  r->len = 0;
+  return row_points(r, pl, f, I, 1);
 }
 
 /* Row I into given columns: cols[0..len) (particle indices, the row of a
@@ -388,31 +403,7 @@ static mfs_status row_assemble_into(mfs_row *r, const mfs_plan *pl, const mfs_fo
   }
   row_zero(r, r->cap);
   r->len = len;
-  r->lump = 0.0;
-  size_t nq;
-  const int *Qs;
-  mfs_plan_particle_points(pl, I, &nq, &Qs);
-  int *col = r->pcol, st = MFS_OK;
-  const double rho = f->lumped_density;
-  for (size_t t = 0; t < nq && st == MFS_OK; t++) {
-    mfs_point pt;
-    row_point(r, (size_t)Qs[t], &pt);
-    size_t iI = 0;
-    for (size_t e = 0; e < pt.nn; e++) {
-      int J = pt.idx[e];
-      iI = J == (int)I ? e : iI;
-      col[e] = r->mark[J];
-      if (col[e] < 0) { /* not in the pattern */
-        st = MFS_EINVAL;
-        break;
-      }
-    }
-    if (st != MFS_OK)
-      break;
-    if (rho != 0.0)
-      r->lump += rho * pt.w * pt.phi[iI * (size_t)pt.ncomp];
-    st = add_point(r, pl, f, I, &pt, iI, col);
-  }
+  mfs_status st = row_points(r, pl, f, I, 0);
   for (size_t s = 0; s < len; s++)
     r->mark[cols[s]] = -1;
   return st;

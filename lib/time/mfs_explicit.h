@@ -45,12 +45,14 @@ static inline double mfs_lerp_uniform(const double *v, size_t n, double dx, doub
   return (1.0 - f) * v[i] + f * v[i + 1];
 }
 
-/* A step dt against the stable step dt_crit: MFS_EINVAL if dt <= 0, not
- * finite, or above dt_crit without force; else MFS_OK. */
-static inline mfs_status mfs_explicit_check_dt(double dt, double dt_crit, int force)
+/* *dt = value if it is a step against the stable step dt_crit: MFS_EINVAL
+ * (and *dt unchanged) if value <= 0, not finite, or above dt_crit without
+ * force; else MFS_OK. */
+static inline mfs_status mfs_explicit_set_dt(double *dt, double value, double dt_crit, int force)
 {
-  if (!(dt > 0.0) || !isfinite(dt) || (dt > dt_crit && !force))
+  if (!(value > 0.0) || !isfinite(value) || (value > dt_crit && !force))
     return MFS_EINVAL;
+  *dt = value;
   return MFS_OK;
 }
 

@@ -224,8 +224,9 @@ static int force(mfs_solver *s, const double *u, double *f)
 
 /* Acceleration at displacement u, time t: m a = f0 - f_int(u); zero at ends
  * whose displacement is prescribed. */
-static int accel(mfs_solver *s, const double *u, double *a)
+static int accel(void *ctx, const double *u, double *a)
 {
+  mfs_solver *s = ctx;
   double *f = s->w->f;
   int st = force(s, u, f);
   if (st != MFS_OK)
@@ -458,18 +459,10 @@ mfs_status mfs_solver_reset(mfs_solver *s)
 
 mfs_status mfs_solver_set_dt(mfs_solver *s, double dt, int force_it)
 {
-  mfs_status st = mfs_explicit_check_dt(dt, s->dt_crit, force_it);
-  if (st == MFS_OK)
-    s->dt = dt;
-  return st;
+  return mfs_explicit_set_dt(&s->dt, dt, s->dt_crit, force_it);
 }
 
-/* mfs_explicit's callbacks (central difference: eq. 120, kick-drift-kick). */
-static int accel_cb(void *ctx, const double *u, double *a)
-{
-  return accel(ctx, u, a);
-}
-
+/* mfs_explicit's impose callback; the step is eq. 120 in kick-drift-kick form. */
 static void impose_cb(void *ctx, double *u, double *v, double t)
 {
   impose(ctx, u, v, t);
@@ -479,7 +472,7 @@ mfs_status mfs_solver_step(mfs_solver *s, mfs_scheme scheme)
 {
   mfs_solver_work *w = s->w;
   mfs_explicit_work rk = {w->u0, w->v0, w->ku, w->kv, w->tu};
-  mfs_status st = mfs_explicit_step(scheme, s->n, s->u, s->v, s->a, s->t, s->dt, &rk, accel_cb,
+  mfs_status st = mfs_explicit_step(scheme, s->n, s->u, s->v, s->a, s->t, s->dt, &rk, accel,
                              impose_cb, s);
   if (st == MFS_OK || st == MFS_EDOMAIN) { /* the step was taken */
     s->t += s->dt;

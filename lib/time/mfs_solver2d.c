@@ -42,8 +42,9 @@ static int force_nl(mfs_solver2d *s, const double *u, double *f);
 
 /* a = -M^-1 K u (linear) or M^-1 (f_int(0) - f_int(u)) (initially stressed);
  * MFS_EDOMAIN if some a_i is not finite. */
-static int accel(mfs_solver2d *s, const double *u, double *a)
+static int accel(void *ctx, const double *u, double *a)
 {
+  mfs_solver2d *s = ctx;
   if (s->stressed) {
     int st = force_nl(s, u, a);
     if (st != MFS_OK)
@@ -500,23 +501,15 @@ mfs_status mfs_solver2d_set_state(mfs_solver2d *s, const double *u, const double
 
 mfs_status mfs_solver2d_set_dt(mfs_solver2d *s, double dt, int force)
 {
-  mfs_status st = mfs_explicit_check_dt(dt, s->dt_crit, force);
-  if (st == MFS_OK)
-    s->dt = dt;
-  return st;
+  return mfs_explicit_set_dt(&s->dt, dt, s->dt_crit, force);
 }
 
 /* Central difference, eq. 120, in kick-drift-kick form. */
-static int accel_cb(void *ctx, const double *u, double *a)
-{
-  return accel(ctx, u, a);
-}
-
 mfs_status mfs_solver2d_step(mfs_solver2d *s, mfs_scheme scheme)
 {
   mfs_solver2d_work *w = s->w;
   mfs_explicit_work rk = {w->u0, w->v0, w->ku, w->kv, w->tu};
-  mfs_status st = mfs_explicit_step(scheme, s->n, s->u, s->v, s->a, s->t, s->dt, &rk, accel_cb, NULL, s);
+  mfs_status st = mfs_explicit_step(scheme, s->n, s->u, s->v, s->a, s->t, s->dt, &rk, accel, NULL, s);
   if (st == MFS_OK || st == MFS_EDOMAIN) { /* the step was taken */
     s->t += s->dt;
     s->steps++;
