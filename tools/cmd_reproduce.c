@@ -472,6 +472,16 @@ static unsigned zero_dirs(const repro_csv *t, const char *file, const char *cons
 
 static const char *const th4[4] = {"0", "15", "30", "45"};
 
+/* zero_dirs of a file over the four directions th4, any branch. */
+static unsigned zero_dirs_th4(const char *file)
+{
+  repro_csv t;
+  repro_csv_read(&t, file);
+  unsigned z = zero_dirs(&t, file, th4, 4, "");
+  repro_csv_free(&t);
+  return z;
+}
+
 static void fig13_14(void)
 {
   disp2d("fig13.csv", "nodal", "square", "0,15,30,45", "lumped");
@@ -489,9 +499,7 @@ static void fig13_14(void)
   repro_row("003 Fig 13 nodal: zero mode at theta = 45, kappa dx/pi", "1.41421 (sqrt 2)", c45.zero,
             ok(fabs(c45.zero - sqrt(2.0)) < 1e-9), f);
   f = "fig14a.csv";
-  repro_csv_read(&t, f);
-  unsigned z = zero_dirs(&t, f, th4, 4, "");
-  repro_csv_free(&t);
+  unsigned z = zero_dirs_th4(f);
   repro_row("003 Fig 14a one-point cells: directions with a zero mode", "1 (45 deg)",
             __builtin_popcount(z), ok(z == 8u), f);
   f = "fig14b.csv";
@@ -596,15 +604,11 @@ static void fig15(void)
       "2", "--quadrature", "stress-star", "--mass", "volume", NULL);
   repro_csv t;
   const char *f = "fig15a.csv";
-  repro_csv_read(&t, f);
-  unsigned z = zero_dirs(&t, f, th4, 4, "");
-  repro_csv_free(&t);
+  unsigned z = zero_dirs_th4(f);
   repro_row("003 Fig 15a quadrilateral centres: zero-mode directions", "1 (45 deg)",
             __builtin_popcount(z), ok(z == 8u), f);
   f = "fig15b.csv";
-  repro_csv_read(&t, f);
-  z = zero_dirs(&t, f, th4, 4, "");
-  repro_csv_free(&t);
+  z = zero_dirs_th4(f);
   repro_row("003 Fig 15b triangle centres: zero-mode directions", "0", __builtin_popcount(z),
             ok(z == 0), f);
   /* eq. 119 (one node per cell, mass = the node volume) against the Bloch
