@@ -3,7 +3,8 @@
 # one run, alternating (the machine is shared: a run of one and a run of the
 # other, R times), and the ratio new/old of each timed quantity as min,
 # median and max over the repetitions.
-#   analysis/bench/compare_builds.sh OLD_BUILD NEW_BUILD [R]   (R default 5)
+#   analysis/bench/compare_builds.sh OLD_BUILD NEW_BUILD [R [BENCHMARKS]]
+#   (R default 5; BENCHMARKS a quoted list of solver assembly dispersion eigs, default all)
 # Rows (CSV on stdout): benchmark,quantity,old_min_s,new_min_s,ratio_min,ratio_median,ratio_max
 #   solver       bench_solver 100000 200: the step-loop seconds of each (frame, dilation)
 #   assembly     bench_assembly 500: the seconds of each phase and the total
@@ -14,9 +15,10 @@ set -u
 OLD=${1:?usage: compare_builds.sh OLD_BUILD NEW_BUILD [R]}
 NEW=${2:?}
 R=${3:-5}
+BENCHES=${4:-solver assembly dispersion eigs}
 tmp=$(mktemp -d)
 trap 'rm -rf "$tmp"' EXIT
-echo "load before: $(cut -d' ' -f1-3 /proc/loadavg)" >&2
+echo "load before: $(cut -d' ' -f1-3 /proc/loadavg), OMP_NUM_THREADS=${OMP_NUM_THREADS:-unset}" >&2
 # run NAME BUILD I: the CSV of one benchmark into $tmp/NAME.BUILDTAG.I
 run() {
   local name=$1 b=$2 tag=$3 i=$4 bin=$2/analysis/bench
@@ -30,14 +32,14 @@ run() {
   eigs) "$bin/bench_eigs" 316 | awk -F, '{print "setup,"$5; print "bound,"$6; print "eig,"$7}' ;;
   esac >"$tmp/$name.$tag.$i"
 }
-for name in solver assembly dispersion eigs; do
+for name in $BENCHES; do
   for i in $(seq "$R"); do
     run "$name" "$OLD" old "$i"
     run "$name" "$NEW" new "$i"
   done
 done
 echo "benchmark,quantity,old_min_s,new_min_s,ratio_min,ratio_median,ratio_max"
-for name in solver assembly dispersion eigs; do
+for name in $BENCHES; do
   /usr/bin/python3 - "$tmp" "$name" "$R" <<'PY'
 import sys, statistics
 tmp, name, R = sys.argv[1], sys.argv[2], int(sys.argv[3])

@@ -16,13 +16,16 @@
 #include "mfs_shape.h"
 #include "mfs_status.h"
 
-/* The arithmetic of mls_fast_order1 (mfs_shape.c) in 1D, in one pass over the candidates. */
+/* The arithmetic of mls_fast_order1 (mfs_shape.c) in 1D, in one pass over the candidates
+ * (mfs_shape_gather_1d_fn's arguments).  With field, values = 0 leaves the values
+ * out[2 J] unwritten (the Eulerian force needs only phi'; a constant, so the store
+ * goes away where it is inlined). */
 typedef void (*mfs_mls1d_kernel_fn)(double z, double *w, double *dw, double *d2w);
 
 static inline int mfs_mls1d_gather(mfs_mls1d_kernel_fn kw, const mfs_shape_ctx *c, const mfs_box *box,
                                    double x, const double *xp, const int *cand, size_t nc,
                                    int *idx, double *out, double *work, int *nn, double *rcond,
-                                   const double *field, double *grad)
+                                   const double *field, double *grad, int values)
 {
   const double a = c->a, ia = 1.0 / a, cn = c->kernel->norm[0] * ia;
   double a00 = 0, a01 = 0, a11 = 0, b00 = 0, b01 = 0, b11 = 0;
@@ -71,7 +74,8 @@ static inline int mfs_mls1d_gather(mfs_mls1d_kernel_fn kw, const mfs_shape_ctx *
       const double *w = work + 3 * J;
       double gp = g0 + g1 * w[2], dgp = dg0 + dg1 * w[2];
       double dphi = dgp * w[0] + gp * w[1];
-      out[2 * J] = gp * w[0];
+      if (values)
+        out[2 * J] = gp * w[0];
       out[2 * J + 1] = dphi;
       gr += dphi * field[idx[J]];
     }

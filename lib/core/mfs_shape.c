@@ -530,7 +530,7 @@ static int kb_fast_order1(const mfs_shape_ctx *c, int nn, const double *d, doubl
   static int mls_gather_1d_##name(GATHER_ARGS)                                               \
   {                                                                                          \
     return mfs_mls1d_gather(mfs_kernel_##name##_w, c, box, x, xp, cand, nc, idx, out, work, \
-                              nn, rcond, field, grad);                                       \
+                              nn, rcond, field, grad, 1);                                    \
   }
 MFS_KERNEL_LIST(MFS_X_GATHER)
 #undef MFS_X_GATHER
@@ -538,7 +538,7 @@ MFS_KERNEL_LIST(MFS_X_GATHER)
 static int mls_gather_1d_any(GATHER_ARGS)
 {
   return mfs_mls1d_gather(c->kernel->eval, c, box, x, xp, cand, nc, idx, out, work, nn, rcond,
-                            field, grad);
+                            field, grad, 1);
 }
 
 static int (*const gather_by_kernel[MFS_KERNEL_NIDS])(GATHER_ARGS) = {
@@ -1160,6 +1160,7 @@ const mfs_shape_type mfs_shape_mls = {.name = "mls",
                                       .eval = mls_eval,
                                       .dpos_1d = mls_dpos,
                                       .gather_1d = mls_gather_1d,
+                                      .gather_1d_is_mls1d = 1,
                                       .dpos = mls_dpos_dim,
                                       .dpos_grad = mls_dpos_grad};
 const mfs_shape_type mfs_shape_kb = {

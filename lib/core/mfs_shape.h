@@ -107,6 +107,8 @@ typedef struct {
    * (phi, phi') to out; work: 3 nc doubles.  The rod solver's Eulerian force
    * calls it every step. */
   mfs_shape_gather_1d_fn (*gather_1d)(const mfs_kernel_type *kernel);
+  int gather_1d_is_mls1d;     /* gather_1d is mfs_mls1d_gather (mfs_mls1d.h) with the kernel's
+                                 formula: a caller may inline that one instead (mls) */
   mfs_shape_dpos_dim_fn dpos; /* any dimension; NULL where not available (kb, rl) */
   mfs_shape_dpos_grad_fn dpos_grad; /* one gradient, every neighbour; NULL as dpos */
 } mfs_shape_type;

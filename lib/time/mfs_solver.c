@@ -163,7 +163,7 @@ static inline int force_eulerian_body(mfs_solver *s, const double *u, double *f,
     if (kw) {
       double rc;
       st = mfs_mls1d_gather(kw, &w->ev.ctx, w->ev.box, w->xq[Q], w->x, cl->idx + e0, nc, w->loc,
-                            w->out, w->ev.work, &nn, &rc, u, &dudx);
+                            w->out, w->ev.work, &nn, &rc, u, &dudx, 0);
     } else {
       st = mfs_eval_point_grad(&w->ev, w->xq + Q, w->x, w->p->vol, cl->idx + e0, nc,
                                w->q->node[Q], w->loc, w->out, &nn, u, &dudx);
@@ -210,7 +210,7 @@ static int (*eulerian_force_of(const mfs_solver *s))(mfs_solver *, const double 
   const mfs_disc *d = &s->spec.disc;
   int id = d->kernel->id;
   /* the search keeps every candidate list within the evaluator's room */
-  if (s->w->ev.fast && d->shape == &mfs_shape_mls && id > 0 && id < MFS_KERNEL_NIDS &&
+  if (s->w->ev.fast && d->shape->gather_1d_is_mls1d && id > 0 && id < MFS_KERNEL_NIDS &&
       force_mls1d[id])
     return force_mls1d[id];
   return force_eulerian;
