@@ -10,7 +10,8 @@
 #   assembly     bench_assembly 500: the seconds of each phase and the total
 #   dispersion   bench_dispersion: seconds of each (family, phase)
 #   eigs         bench_eigs 316: the model setup, bound and eigenvalue seconds
-# Also prints the load average before and after.
+# Also prints the load average before and after.  The sizes can be changed with
+# SOLVER_ARGS (default "100000 200"), ASSEMBLY_ARGS ("500"), EIGS_ARGS ("316").
 set -u
 OLD=${1:?usage: compare_builds.sh OLD_BUILD NEW_BUILD [R]}
 NEW=${2:?}
@@ -23,13 +24,13 @@ echo "load before: $(cut -d' ' -f1-3 /proc/loadavg), OMP_NUM_THREADS=${OMP_NUM_T
 run() {
   local name=$1 b=$2 tag=$3 i=$4 bin=$2/analysis/bench
   case $name in
-  solver) "$bin/bench_solver" 100000 200 | awk -F, 'NR>1{print $3"_D"$4","$6}' ;;
-  assembly) "$bin/bench_assembly" 500 | awk -F, 'NR==1{for(k=1;k<=NF;k++)h[$k]=k; next}
+  solver) "$bin/bench_solver" ${SOLVER_ARGS:-100000 200} | awk -F, 'NR>1{print $3"_D"$4","$6}' ;;
+  assembly) "$bin/bench_assembly" ${ASSEMBLY_ARGS:-500} | awk -F, 'NR==1{for(k=1;k<=NF;k++)h[$k]=k; next}
             {print $h["phase"]","$h["seconds"]}' ;;
   dispersion) "$bin/bench_dispersion" 2>/dev/null | awk -F, 'NR==1{for(k=1;k<=NF;k++)h[$k]=k
             t = ("seconds_median" in h) ? h["seconds_median"] : h["seconds"]; next}
             {print $h["family"]"_"$h["phase"]","$t}' ;;
-  eigs) "$bin/bench_eigs" 316 | awk -F, '{print "setup,"$5; print "bound,"$6; print "eig,"$7}' ;;
+  eigs) "$bin/bench_eigs" ${EIGS_ARGS:-316} | awk -F, '{print "setup,"$5; print "bound,"$6; print "eig,"$7}' ;;
   esac >"$tmp/$name.$tag.$i"
 }
 for name in $BENCHES; do
