@@ -3,8 +3,10 @@
 # byte, with OMP_NUM_THREADS=1, 2 and 3.  The assembly computes every row (and
 # the plan's table every point) on one thread in the serial order, the element
 # bound and the Gershgorin pass combine their per-row values in the serial
-# order with the serial ties; the matvec, ARPACK's iteration and the solvers'
-# force loops are serial, so lambda_max (eigs), the bounds (bound), the check
+# order with the serial ties; lambda_max's product runs on the threads by a
+# fixed number of row blocks (lib/analysis/mfs_eigen.c, sym_csr: the same
+# sums for any thread count), ARPACK's iteration and the solvers' force loops
+# are serial, so lambda_max (eigs), the bounds (bound), the check
 # report and the time-domain runs come out the same bits: no column needs the
 # 1e-12 tolerance.  Files and, for check, its report on stdout.  Skipped (77)
 # without OpenMP.
