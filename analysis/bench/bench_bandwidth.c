@@ -1,8 +1,9 @@
 /* Benchmark (not a test; issue 14 item 8): the machine's limits that the other
  * benchmarks state their work against, with 1 and 2 threads.
  *   memory bandwidth: bench_common.h's STREAM-like read (s += a b, 16 B per
- *     element) and triad (a = b + q c, 24 B per element), 3 arrays of 32 MiB,
- *     best of 7 passes;
+ *     element) and triad (a = b + q c, 24 B per element), 3 arrays of 128 MiB,
+ *     best of 8 x 7 passes (the machine is shared: the best is the closest to
+ *     what it can do);
  *   flop rate: dgemm through the BLAS the build links (n = 1000, C += A B,
  *     2 n^3 flops, best of 5; with 2 threads each thread its own matrices, at
  *     the same time) and a loop of multiply-adds on 8 independent accumulators
@@ -11,7 +12,8 @@
  *   bench_bandwidth [--header]
  * CSV: kernel,threads,bytes,flops,seconds,gbs,gflops
  *   rows read, triad, dgemm, fma_loop per thread count, then `limit`: gbs the
- *   larger of read and triad, gflops dgemm's: what analysis/bench/run.sh passes
+ *   larger of read and triad, gflops dgemm's (with 2 threads at least those of
+ *   1 thread): what analysis/bench/run.sh passes
  *   to the other benchmarks (MFS_BENCH_GBS, MFS_BENCH_GFLOPS). */
 #include <stdio.h>
 #include <stdlib.h>
@@ -82,12 +84,17 @@ int main(int argc, char **argv)
 {
   if (argc > 1 && strcmp(argv[1], "--header") == 0)
     puts("kernel,threads,bytes,flops,seconds,gbs,gflops");
-  const size_t n = (size_t)1 << 22;
+  const size_t n = BENCH_STREAM_N;
   const int gn = 1000;
   const long iters = 50000000;
-  double sink = 0.0;
+  double sink = 0.0, g_prev = 0.0, gf_prev = 0.0;
   for (int nt = 1; nt <= 2; nt++) {
     bench_bandwidth bw = bench_stream(nt);
+    for (int k = 1; k < 8; k++) { /* the machine is shared: the best of 8 x 7 passes */
+      bench_bandwidth b2 = bench_stream(nt);
+      bw.read_gbs = b2.read_gbs > bw.read_gbs ? b2.read_gbs : bw.read_gbs;
+      bw.triad_gbs = b2.triad_gbs > bw.triad_gbs ? b2.triad_gbs : bw.triad_gbs;
+    }
     printf("read,%d,%.0f,0,%.6f,%.3f,\n", nt, 16.0 * n, 16.0 * n / (bw.read_gbs * 1e9),
            bw.read_gbs);
     printf("triad,%d,%.0f,0,%.6f,%.3f,\n", nt, 24.0 * n, 24.0 * n / (bw.triad_gbs * 1e9),
@@ -96,8 +103,15 @@ int main(int argc, char **argv)
     printf("dgemm,%d,0,%.0f,%.6f,,%.3f\n", nt, fl, tg, tg > 0 ? fl / tg * 1e-9 : 0.0);
     double ff = 16.0 * (double)iters * nt, tf = fma_seconds(nt, iters, &sink);
     printf("fma_loop,%d,0,%.0f,%.6f,,%.3f\n", nt, ff, tf, ff / tf * 1e-9);
+    /* the limit of 2 threads is at least that of 1 (on the shared machine the
+       second thread's measurement can come out lower) */
     double g = bw.read_gbs > bw.triad_gbs ? bw.read_gbs : bw.triad_gbs;
-    printf("limit,%d,,,,%.3f,%.3f\n", nt, g, tg > 0 ? fl / tg * 1e-9 : 0.0);
+    double gf = tg > 0 ? fl / tg * 1e-9 : 0.0;
+    g = g > g_prev ? g : g_prev;
+    gf = gf > gf_prev ? gf : gf_prev;
+    g_prev = g;
+    gf_prev = gf;
+    printf("limit,%d,,,,%.3f,%.3f\n", nt, g, gf);
   }
   if (sink == 12345.678)
     puts("#");
