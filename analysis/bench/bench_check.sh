@@ -84,5 +84,7 @@ if [ -n "${BLAS_DIR:-}" ]; then
   envs=(LD_LIBRARY_PATH="$BLAS_DIR")
   certify_rows "$BLAS_DIR"
 fi
+# limit_kind, limit_s, fraction (docs/benchmarks.md; the limits of notebooks-data/bench_bandwidth.csv)
+/usr/bin/python3 "$(dirname "$0")/limits.py" "$tmp" --rule bench_check || true
 mv "$tmp" "$OUT"
 echo "wrote $OUT" >&2

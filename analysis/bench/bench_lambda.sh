@@ -26,7 +26,10 @@
 # LD_LIBRARY_PATH=/usr/lib/x86_64-linux-gnu/openblas-serial: Debian's SciPy
 # links libopenblas.so.0 (the pthread build by default), this makes it the
 # serial OpenBLAS that mfstab's libblas.so.3 is (docs/parallel.md).
+# OMP_WAIT_POLICY is passive unless set: what mfstab sets for itself (docs/parallel.md, Idle
+# threads); with libgomp's default the 2-thread product lost up to 5 times on the loaded machine.
 set -euo pipefail
+export OMP_WAIT_POLICY=${OMP_WAIT_POLICY:-passive}
 
 BUILD=${1:-build}
 shift || true

@@ -1,7 +1,7 @@
 #!/usr/bin/python3
 """The physical limit of each row of a benchmark CSV (issue 14 item 8).
 
-    limits.py CSV --gbs G1 --gbs2 G2 --gflops F
+    limits.py CSV [--rule NAME] [--gbs G1 --gbs2 G2 --gflops F] [--bandwidth FILE]
 
 adds (or refills) three columns in place: limit_kind (bytes: the bytes the
 row's work must move at least once, at the measured memory bandwidth; flops:
@@ -9,7 +9,9 @@ the flops it must do, at the measured dgemm rate; none: no lower bound is
 derived for that work, the cells empty), limit_s (seconds at the limit) and
 fraction (limit_s / the row's seconds).  G1 and G2 are the bandwidths (GB/s)
 of one and two threads, F the flop rate (Gflop/s) of one thread, from
-notebooks-data/bench_bandwidth.csv (analysis/bench/bench_bandwidth.c).  What
+notebooks-data/bench_bandwidth.csv (analysis/bench/bench_bandwidth.c; --bandwidth
+FILE, default the repository's, read when --gbs is not given).  --rule NAME
+(bench_eigs, ...) when the file name is not the benchmark's.  What
 each benchmark's limit counts is in docs/benchmarks.md; the rules are below,
 one function per CSV, chosen by the file name.  bench_lambda.csv and
 bench_assembly.csv compute their limits themselves (bench_lambda.c,
@@ -118,11 +120,25 @@ OWN = ("bench_lambda", "bench_assembly", "bench_bandwidth")
 def main():
     ap = argparse.ArgumentParser()
     ap.add_argument("csv")
-    ap.add_argument("--gbs", type=float, required=True)
-    ap.add_argument("--gbs2", type=float, required=True)
-    ap.add_argument("--gflops", type=float, required=True)
+    ap.add_argument("--rule")
+    ap.add_argument("--gbs", type=float)
+    ap.add_argument("--gbs2", type=float)
+    ap.add_argument("--gflops", type=float)
+    here = os.path.dirname(os.path.abspath(__file__))
+    ap.add_argument("--bandwidth",
+                    default=os.path.join(here, "..", "..", "notebooks-data", "bench_bandwidth.csv"))
     a = ap.parse_args()
-    name = os.path.splitext(os.path.basename(a.csv))[0]
+    if a.gbs is None:
+        try:
+            with open(a.bandwidth, newline="") as fh:
+                lim = {r["threads"]: r for r in csv.DictReader(fh) if r["kernel"] == "limit"}
+            a.gbs, a.gbs2 = float(lim["1"]["gbs"]), float(lim["2"]["gbs"])
+            a.gflops = float(lim["1"]["gflops"])
+        except (OSError, KeyError, ValueError):
+            print(f"limits.py: no limits (give --gbs, --gbs2, --gflops or a {a.bandwidth} "
+                  "from analysis/bench/bench_bandwidth); the CSV is left as it is", file=sys.stderr)
+            return 0
+    name = a.rule or os.path.splitext(os.path.basename(a.csv))[0]
     with open(a.csv, newline="") as fh:
         lines = [l for l in fh if not l.startswith("#")]
     rows = list(csv.DictReader(lines))
@@ -146,7 +162,10 @@ def main():
             if c not in cols:
                 cols.append(c)
         for r in rows:
-            kind, lim, secs = rule(r, bw)
+            try:
+                kind, lim, secs = rule(r, bw)
+            except (TypeError, ZeroDivisionError):  # a summary row, or a cell missing
+                kind, lim, secs = "none", None, None
             r["limit_kind"] = kind
             r["limit_s"] = "" if lim is None else f"{lim:.6g}"
             r["fraction"] = "" if lim is None or not secs else f"{lim / secs:.4f}"
