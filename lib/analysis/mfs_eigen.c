@@ -399,8 +399,14 @@ static int default_ncv(const mfs_eig_opts *o, int nev, size_t n)
  * a_ij x_i for j in the block); the scatter beyond its last row goes into
  * the block's own band buffer z (columns cut[b+1] .. its largest column),
  * added to y after all blocks in the order of the blocks.  On a lattice
- * the band is a few rows of particles wide. */
+ * the band is a few rows of particles wide.  Below SYM_PARALLEL_MIN stored
+ * entries (24 MB) the blocks run on the calling thread: a parallel region
+ * per product cost more than it gained on the shared machine (the anti-plane
+ * model at 10^4 nodes, 2 10^5 entries: 671 products in 0.53 s on one
+ * thread, 0.76 s on two with OMP_WAIT_POLICY=passive, 1.8 s with libgomp's
+ * default, at a load of 4-8; docs/benchmarks.md).  The sums are the same. */
 #define SYM_BLOCKS 8
+#define SYM_PARALLEL_MIN ((size_t)1 << 21)
 typedef struct {
   size_t n;
   size_t *ptr;
@@ -493,9 +499,10 @@ static void sym_matvec(const sym_csr *A, const double *restrict x, double *restr
   const int *restrict idx = A->idx;
   const double *restrict val = A->val, *restrict dg = A->diag;
   double *restrict z = A->z;
-  const int nt = mfs_omp_threads();
+  const int nt = mfs_omp_threads(), par = A->ptr[A->n] >= SYM_PARALLEL_MIN;
   (void)nt;
-  MFS_OMP("omp parallel for schedule(static) num_threads(nt)")
+  (void)par;
+  MFS_OMP("omp parallel for schedule(static) num_threads(nt) if (par)")
   for (int b = 0; b < SYM_BLOCKS; b++) {
     size_t lo = A->cut[b], hi = A->cut[b + 1];
     double *restrict zb = z + A->zoff[b];
