@@ -8,6 +8,7 @@
  *   bench_lambda NX NY [--tol T] [--ref L] [--rep R] [--certify] [--export PREFIX]
  *                [--header]
  *   --tol T      ARPACK's tolerance (default 1e-6: what the step needs)
+ *   --ncv K      Lanczos vectors (default 20, as mfstab eigs)
  *   --ref L      the reference lambda_max (a run at --tol 0): error = |lambda - L| / L
  *   --certify    also the certified step from this run's Lanczos value
  *   --export P   write P_K.mtx and P_M.mtx (Matrix Market) and stop
@@ -18,7 +19,7 @@
  *   bandwidth_gbs,peak_gflops,limit_s,fraction,op_fraction,peak_rss_mb
  * mfstab: seconds = mfs_eig_max; op_s_per_matvec = the products alone
  * (info.op_seconds / matvecs); bytes_per_matvec = what the product reads and
- * writes at least once (MATVEC_BYTES below); limit_s = matvecs *
+ * writes at least once (matvec_bytes below); limit_s = matvecs *
  * bytes_per_matvec / bandwidth; fraction = limit_s / seconds, op_fraction =
  * limit_s / op seconds.  mfstab-certify: seconds = mfs_eig_certify_search
  * (the factorizations of sigma M - K; the Lanczos value is the row above's),
@@ -35,8 +36,8 @@
 #include "mfstab.h"
 
 /* The bytes of one product y = A x, A = M^-1/2 K M^-1/2, as the library
- * computes it (lib/analysis/mfs_eigen.c, op_lumped): MFS_EIG_STORAGE_HALF,
- * the diagonal and the strict upper triangle, 12 B per stored entry (value
+ * computes it (lib/analysis/mfs_eigen.c, op_lumped): half storage, the
+ * diagonal and the strict upper triangle, 12 B per stored entry (value
  * and int column), 8 B per row pointer, the diagonal, x read and y written
  * once; or the full rows of K (12 B per entry, 8 B per row pointer) scaled on
  * the fly (s, x, y). */
@@ -54,11 +55,11 @@ static double matvec_bytes(const mfs_csr *K, int half)
 int main(int argc, char **argv)
 {
   if (argc < 3) {
-    fprintf(stderr, "usage: bench_lambda NX NY [--tol T] [--ref L] [--rep R] [--certify] "
+    fprintf(stderr, "usage: bench_lambda NX NY [--tol T] [--ncv K] [--ref L] [--rep R] [--certify] "
                     "[--export PREFIX] [--header]\n");
     return 2;
   }
-  int nx = atoi(argv[1]), ny = atoi(argv[2]), rep = 1, header = 0, certify = 0;
+  int nx = atoi(argv[1]), ny = atoi(argv[2]), rep = 1, header = 0, certify = 0, ncv = 20;
   double tol = 1e-6, ref = 0.0;
   const char *export_prefix = NULL;
   for (int i = 3; i < argc; i++) {
@@ -66,6 +67,8 @@ int main(int argc, char **argv)
       tol = atof(argv[++i]);
     else if (strcmp(argv[i], "--ref") == 0 && i + 1 < argc)
       ref = atof(argv[++i]);
+    else if (strcmp(argv[i], "--ncv") == 0 && i + 1 < argc)
+      ncv = atoi(argv[++i]);
     else if (strcmp(argv[i], "--rep") == 0 && i + 1 < argc)
       rep = atoi(argv[++i]);
     else if (strcmp(argv[i], "--export") == 0 && i + 1 < argc)
@@ -118,7 +121,7 @@ int main(int argc, char **argv)
   const char *gf = getenv("MFS_BENCH_GFLOPS");
   double flops_ps = gf && atof(gf) > 0.0 ? atof(gf) * 1e9 : 0.0;
   mfs_pencil P = {m->K, m->M, m->m};
-  mfs_eig_opts eo = {20, 0, tol};
+  mfs_eig_opts eo = {ncv, 0, tol};
   mfs_eig_info info;
   double lam = 0.0;
   t0 = bench_now();
