@@ -59,6 +59,10 @@ same eigs-1d eigs --nodes 41 --length 1 --quadrature gauss2 --dilation 2
 same eigs-2d-seeds eigs --dim 2 --nodes 21,21 --perturb 0.3 --seeds 3 --zero-modes
 same eigs-plane-strain eigs --dim 2 --nodes 25,25 --physics plane-strain --quadrature stress-quad \
   --dilation 2.5
+# a model whose lambda_max product runs on the threads (2.6e6 stored entries of the upper
+# triangle, above lib/analysis/mfs_eigen.c's SYM_PARALLEL_MIN = 2^21)
+same eigs-parallel-product eigs --dim 2 --nodes 190,190 --physics plane-strain \
+  --quadrature stress-quad
 # the bounds alone (streamed)
 same bound-2d bound --dim 2 --nodes 61,61 --physics plane-strain
 same bound-tri bound --dim 2 --nodes 41,41 --quadrature stress-tri --perturb 0.2
