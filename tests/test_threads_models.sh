@@ -3,8 +3,10 @@
 # byte, with OMP_NUM_THREADS=1, 2 and 3.  The assembly computes every row (and
 # the plan's table every point) on one thread in the serial order, the element
 # bound and the Gershgorin pass combine their per-row values in the serial
-# order with the serial ties; the matvec, ARPACK's iteration and the solvers'
-# force loops are serial, so lambda_max (eigs), the bounds (bound), the check
+# order with the serial ties; lambda_max's product runs on the threads by a
+# fixed number of row blocks (lib/analysis/mfs_eigen.c, sym_csr: the same
+# sums for any thread count), ARPACK's iteration and the solvers' force loops
+# are serial, so lambda_max (eigs), the bounds (bound), the check
 # report and the time-domain runs come out the same bits: no column needs the
 # 1e-12 tolerance.  Files and, for check, its report on stdout.  Skipped (77)
 # without OpenMP.
@@ -57,6 +59,10 @@ same eigs-1d eigs --nodes 41 --length 1 --quadrature gauss2 --dilation 2
 same eigs-2d-seeds eigs --dim 2 --nodes 21,21 --perturb 0.3 --seeds 3 --zero-modes
 same eigs-plane-strain eigs --dim 2 --nodes 25,25 --physics plane-strain --quadrature stress-quad \
   --dilation 2.5
+# a model whose lambda_max product runs on the threads (2.6e6 stored entries of the upper
+# triangle, above lib/analysis/mfs_eigen.c's SYM_PARALLEL_MIN = 2^21)
+same eigs-parallel-product eigs --dim 2 --nodes 190,190 --physics plane-strain \
+  --quadrature stress-quad
 # the bounds alone (streamed)
 same bound-2d bound --dim 2 --nodes 61,61 --physics plane-strain
 same bound-tri bound --dim 2 --nodes 41,41 --quadrature stress-tri --perturb 0.2

@@ -73,3 +73,5 @@ for v in by:
           (v, stat[v]["min"], stat[v]["median"], stat[v]["max"],
            stat["reference"]["median"] / stat[v]["median"]))
 PY
+# limit_kind, limit_s, fraction (docs/benchmarks.md; the limits of notebooks-data/bench_bandwidth.csv)
+/usr/bin/python3 "$(dirname "$0")/limits.py" "$OUT" --rule bench_blas || true

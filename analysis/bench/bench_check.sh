@@ -23,6 +23,8 @@
 #   lambda_max (1/s^2); factorizations: their count; dt_certified: dt_certified/dt_crit;
 #   time_ratio: seconds = (lanczos + factorizations) / arpack (wall), cpu_seconds the same
 #   in CPU time, value the entries of the factor.  peak_rss_mb: the process's peak.
+#   gflop: factorizations: the flops of all of them (10^9; CHOLMOD's count), the work
+#   that analysis/bench/limits.py states against the dgemm rate.
 set -euo pipefail
 # one core: CHOLMOD's supernodal factorization runs OpenMP threads unless told not to
 export OMP_NUM_THREADS=1
@@ -37,7 +39,7 @@ work=$(mktemp -d "${TMPDIR:-/tmp}/bench_check.XXXXXX")
 trap 'rm -rf "$work"' EXIT
 mkdir -p "$(dirname "$OUT")"
 tmp="$OUT.tmp.$$"
-echo "job,particles,variant,phase,seconds,cpu_seconds,value,peak_rss_mb,blas" >"$tmp"
+echo "job,particles,variant,phase,seconds,cpu_seconds,value,peak_rss_mb,blas,gflop" >"$tmp"
 
 # 1. 10^6 particles
 "$B" gen 1000 "$work/p.csv"
@@ -70,7 +72,7 @@ certify_rows() { # LABEL ENV...
       echo "certify,$n,$var,assembly,$asm,,,$rss,$label" >>"$tmp"
       echo "certify,$n,$var,arpack_lambda_max,$ars,,$lam,$rss,$label" >>"$tmp"
       echo "certify,$n,$var,lanczos_1e-4,$ls,,,$rss,$label" >>"$tmp"
-      echo "certify,$n,$var,factorizations,$fs,,$nf,$rss,$label" >>"$tmp"
+      echo "certify,$n,$var,factorizations,$fs,,$nf,$rss,$label,$(awk -v a="$nf" -v b="$gf" 'BEGIN { print a * b }')" >>"$tmp"
       echo "certify,$n,$var,dt_certified,$cs,,$frac,$rss,$label" >>"$tmp"
       echo "certify,$n,$var,time_ratio,$tr,$cr,$fnnz,$rss,$label" >>"$tmp"
     done
@@ -82,5 +84,7 @@ if [ -n "${BLAS_DIR:-}" ]; then
   envs=(LD_LIBRARY_PATH="$BLAS_DIR")
   certify_rows "$BLAS_DIR"
 fi
+# limit_kind, limit_s, fraction (docs/benchmarks.md; the limits of notebooks-data/bench_bandwidth.csv)
+/usr/bin/python3 "$(dirname "$0")/limits.py" "$tmp" --rule bench_check || true
 mv "$tmp" "$OUT"
 echo "wrote $OUT" >&2

@@ -4,7 +4,8 @@
  * must move at the measured bandwidth, `fraction` = limit_s / seconds).
  *
  * Bandwidth: a STREAM-like loop (McCalpin's kernels) over three arrays of
- * 2^22 doubles (32 MiB each: far beyond the caches), best of 7 passes:
+ * 2^24 doubles (128 MiB each: 4 times this machine's 32 MiB L3, so that no
+ * pass is served from the cache), best of 7 passes:
  *   read   s += a[i] * b[i]          16 bytes per element (the loads of a
  *                                    sparse product: matrix, index, vector)
  *   triad  a[i] = b[i] + q * c[i]    24 bytes per element as STREAM counts them
@@ -46,6 +47,8 @@ static inline int bench_threads(void)
 #endif
 }
 
+#define BENCH_STREAM_N ((size_t)1 << 24) /* doubles per array */
+
 typedef struct {
   double read_gbs, triad_gbs; /* 10^9 bytes per second */
   int threads;
@@ -55,7 +58,7 @@ typedef struct {
 static inline bench_bandwidth bench_stream(int threads)
 {
   bench_bandwidth bw = {0.0, 0.0, threads > 0 ? threads : bench_threads()};
-  const size_t n = (size_t)1 << 22;
+  const size_t n = BENCH_STREAM_N;
   double *a = malloc(n * sizeof *a), *b = malloc(n * sizeof *b), *c = malloc(n * sizeof *c);
   if (!a || !b || !c) {
     free(a);

@@ -119,5 +119,7 @@ EOF
     rm -f "$work"/m_K.mtx "$work"/m_M.mtx
   fi
 done
+# limit_kind, limit_s, fraction (docs/benchmarks.md; the limits of notebooks-data/bench_bandwidth.csv)
+/usr/bin/python3 "$(dirname "$0")/limits.py" "$tmpout" --rule bench_eigs || true
 mv "$tmpout" "$OUT"
 echo "wrote $OUT" >&2

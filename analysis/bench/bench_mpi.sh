@@ -64,6 +64,8 @@ for s in "${SIDES[@]}"; do
     echo "bench_mpi: side $s, run $r done (load $(load))" >&2
   done
 done
+# limit_kind, limit_s, fraction (docs/benchmarks.md; the limits of notebooks-data/bench_bandwidth.csv)
+/usr/bin/python3 "$(dirname "$0")/limits.py" "$tmpout" --rule bench_mpi || true
 mv "$tmpout" "$OUT"
 trap - EXIT
 echo "bench_mpi: $OUT" >&2

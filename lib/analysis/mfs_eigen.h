@@ -79,6 +79,9 @@ typedef struct {
   int runs;           /* ARPACK runs (zero modes: one per deflation round) */
   double residual;    /* max ||K v - lambda M v||_2 / (lambda_ref ||M v||_2) over the
                          returned pairs, lambda_ref = max(|lambda|, lambda_max) */
+  double op_seconds;  /* wall clock spent in the operations OP x and B x (the products
+                         and solves), summed over runs; the rest of a run is ARPACK's
+                         (0 from the distributed mfs_peig_max) */
 } mfs_eig_info;
 
 /* Records the failing call (routine, its code) in info, which may be NULL;

@@ -1,0 +1,182 @@
+#!/usr/bin/python3
+"""The physical limit of each row of a benchmark CSV (issue 14 item 8).
+
+    limits.py CSV [--rule NAME] [--gbs G1 --gbs2 G2 --gflops F] [--bandwidth FILE]
+
+adds (or refills) three columns in place: limit_kind (bytes: the bytes the
+row's work must move at least once, at the measured memory bandwidth; flops:
+the flops it must do, at the measured dgemm rate; none: no lower bound is
+derived for that work, the cells empty), limit_s (seconds at the limit) and
+fraction (limit_s / the row's seconds).  G1 and G2 are the bandwidths (GB/s)
+of one and two threads, F the flop rate (Gflop/s) of one thread, from
+notebooks-data/bench_bandwidth.csv (analysis/bench/bench_bandwidth.c; --bandwidth
+FILE, default the repository's, read when --gbs is not given).  --rule NAME
+(bench_eigs, ...) when the file name is not the benchmark's.  What
+each benchmark's limit counts is in docs/benchmarks.md; the rules are below,
+one function per CSV, chosen by the file name.  bench_lambda.csv and
+bench_assembly.csv compute their limits themselves (bench_lambda.c,
+bench_assembly.c): for them only limit_kind is filled where missing.
+"""
+import argparse
+import csv
+import os
+import sys
+
+
+def f(row, key):
+    v = row.get(key, "")
+    try:
+        return float(v)
+    except ValueError:
+        return None
+
+
+def half_matvec_bytes(n, nnz):
+    """mfs_eig_max's product: the diagonal and strict upper triangle (12 B per
+    entry: value and int column), 8 B row pointers, diagonal, x, y."""
+    return 6.0 * (nnz - n) + 8.0 * (n + 1) + 24.0 * n
+
+
+def full_matvec_bytes(n, nnz, ptr=8.0, vectors=3):
+    """A CSR product over full rows: 12 B per entry, the row pointers, and
+    `vectors` vectors of n doubles (x, y, and the scaling when it is applied
+    on the fly)."""
+    return 12.0 * nnz + ptr * (n + 1) + 8.0 * vectors * n
+
+
+def eigs(row, bw):
+    n, nnz, mv, s = f(row, "dofs"), f(row, "nnz_K"), f(row, "matvecs"), f(row, "seconds")
+    if row["phase"] == "eigs" and n and nnz and mv:
+        return "bytes", mv * half_matvec_bytes(n, nnz) / bw[1], s
+    if row["phase"] == "eigsh" and n and nnz and mv:  # SciPy: int32 indptr, x and y
+        return "bytes", mv * full_matvec_bytes(n, nnz, 4.0, 2) / bw[1], s
+    if row["phase"] == "setup" and n and nnz:  # K written once (assembly)
+        return "bytes", full_matvec_bytes(n, nnz, 8.0, 0) / bw[1], s
+    return "none", None, s
+
+
+def blas(row, bw):
+    n, nnz, mv = f(row, "dofs"), f(row, "nnz_K"), f(row, "matvecs")
+    return "bytes", mv * half_matvec_bytes(n, nnz) / bw[1], f(row, "eig_s")
+
+
+def mpi(row, bw):
+    mv, s = f(row, "matvecs"), f(row, "eig_s")
+    ranks = int(f(row, "ranks") or 1)
+    if row["mode"] == "serial":
+        n, nnz = f(row, "dofs"), f(row, "nnz_max")
+        return "bytes", mv * half_matvec_bytes(n, nnz) / bw[1], s
+    # each rank its full rows scaled on the fly (mfs_peigs); the busiest rank,
+    # at the bandwidth of as many threads as ranks (one memory bus)
+    rows, nnz = f(row, "rows_max"), f(row, "nnz_max")
+    return "bytes", mv * full_matvec_bytes(rows, nnz) / bw[min(ranks, 2)], s
+
+
+def static(row, bw):
+    nnz, fac, s = f(row, "nnz_K"), f(row, "factor_nnz"), f(row, "total_s")
+    if nnz is None or fac is None:
+        return "none", None, s
+    # K written once and read once by the factorization, the factor written once
+    return "bytes", (24.0 * nnz + 12.0 * fac) / bw[1], s
+
+
+def solver(row, bw):
+    """1D EFG, nodal integration, leapfrog: per particle and step the state
+    (u and v read and written: 32 B) and the plan's gradient row (12 B per
+    neighbour: value and index; 2 floor(D) + 1 neighbours)."""
+    p, steps, d, s = f(row, "particles"), f(row, "steps"), f(row, "dilation"), f(row, "seconds")
+    nb = 2 * int(d) + 1
+    return "bytes", p * steps * (32.0 + 12.0 * nb) / bw[1], s
+
+
+def check(row, bw, gflops):
+    """bench_check: the factorizations of sigma M - K, CHOLMOD's flops at the
+    dgemm rate; the other phases have no limit derived."""
+    g, s = f(row, "gflop"), f(row, "seconds")
+    if row.get("phase") == "factorizations" and g:
+        return "flops", g / gflops, s
+    return "none", None, s
+
+
+def none(row, bw):
+    for k in ("seconds", "total_s", "wall_s", "seconds_median", "eval_s"):
+        if f(row, k) is not None:
+            return "none", None, f(row, k)
+    return "none", None, None
+
+
+RULES = {
+    "bench_eigs": eigs,
+    "bench_blas": blas,
+    "bench_mpi": mpi,
+    "bench_mpi_loaded": mpi,
+    "bench_static": static,
+    "bench_solver": solver,
+    "bench_check": check,
+}
+OWN = ("bench_lambda", "bench_assembly", "bench_bandwidth")
+
+
+def main():
+    ap = argparse.ArgumentParser()
+    ap.add_argument("csv")
+    ap.add_argument("--rule")
+    ap.add_argument("--gbs", type=float)
+    ap.add_argument("--gbs2", type=float)
+    ap.add_argument("--gflops", type=float)
+    here = os.path.dirname(os.path.abspath(__file__))
+    ap.add_argument("--bandwidth",
+                    default=os.path.join(here, "..", "..", "notebooks-data", "bench_bandwidth.csv"))
+    a = ap.parse_args()
+    if a.gbs is None:
+        try:
+            with open(a.bandwidth, newline="") as fh:
+                lim = {r["threads"]: r for r in csv.DictReader(fh) if r["kernel"] == "limit"}
+            a.gbs, a.gbs2 = float(lim["1"]["gbs"]), float(lim["2"]["gbs"])
+            a.gflops = float(lim["1"]["gflops"])
+        except (OSError, KeyError, ValueError):
+            print(f"limits.py: no limits (give --gbs, --gbs2, --gflops or a {a.bandwidth} "
+                  "from analysis/bench/bench_bandwidth); the CSV is left as it is", file=sys.stderr)
+            return 0
+    name = a.rule or os.path.splitext(os.path.basename(a.csv))[0]
+    with open(a.csv, newline="") as fh:
+        lines = [l for l in fh if not l.startswith("#")]
+    rows = list(csv.DictReader(lines))
+    if not rows:
+        return 0
+    cols = list(rows[0].keys())
+    if name == "bench_bandwidth":
+        return 0
+    bw = {1: a.gbs * 1e9, 2: a.gbs2 * 1e9}
+    if name in OWN:
+        if "limit_kind" not in cols:
+            cols.append("limit_kind")
+        for r in rows:
+            if not r.get("limit_kind"):
+                r["limit_kind"] = "bytes" if r.get("limit_s") else "none"
+    else:
+        rule = RULES.get(name, none)
+        if rule is check:
+            rule = lambda r, b: check(r, b, a.gflops * 1e9)  # noqa: E731
+        for c in ("limit_kind", "limit_s", "fraction"):
+            if c not in cols:
+                cols.append(c)
+        for r in rows:
+            try:
+                kind, lim, secs = rule(r, bw)
+            except (TypeError, ZeroDivisionError):  # a summary row, or a cell missing
+                kind, lim, secs = "none", None, None
+            r["limit_kind"] = kind
+            r["limit_s"] = "" if lim is None else f"{lim:.6g}"
+            r["fraction"] = "" if lim is None or not secs else f"{lim / secs:.4f}"
+    tmp = a.csv + ".tmp"
+    with open(tmp, "w", newline="") as fh:
+        w = csv.DictWriter(fh, fieldnames=cols, lineterminator="\n")
+        w.writeheader()
+        w.writerows(rows)
+    os.replace(tmp, a.csv)
+    return 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())
