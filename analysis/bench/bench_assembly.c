@@ -489,7 +489,24 @@ int main(int argc, char **argv)
     fprintf(stderr, "bench_assembly: -o %s: cannot open\n", outpath);
     return 2;
   }
-  double bps = bench_bandwidth_bps();
+  /* measured in a child: libgomp's threads do not survive fork(), and a
+   * child forked after the parent's first parallel region waits for them
+   * forever in its own first one */
+  double bps = 0.0;
+  int pfd[2];
+  if (pipe(pfd) == 0) {
+    pid_t pid = fork();
+    if (pid == 0) {
+      double b = bench_bandwidth_bps();
+      _exit(write(pfd[1], &b, sizeof b) == (ssize_t)sizeof b ? 0 : 1);
+    }
+    close(pfd[1]);
+    if (pid > 0 && read(pfd[0], &bps, sizeof bps) != (ssize_t)sizeof bps)
+      bps = 0.0;
+    close(pfd[0]);
+    if (pid > 0)
+      waitpid(pid, NULL, 0);
+  }
   fprintf(f, "n_side,nodes,quad_points,rep,mode,threads,phase,seconds,user_s,sys_s,peak_rss_mb,"
              "nnz_K,bytes_per_nnz,error,ratio,limit_s,fraction,bandwidth_gbs\n");
   fflush(f);
