@@ -12,6 +12,9 @@
 #     the order of the two alternating from one repetition to the next: the
 #     perturbed lattice with nodal integration and the lattice with 2 x 2 Gauss
 #     cells, lumped mass; and the perturbed lattice with consistent mass.
+# BASE_BUILD=DIR (a build of an earlier commit) runs its bench_check and mfstab on the
+# same files in the same repetitions, alternating with this build, labelled blas=base
+# (its bench_check has no per-phase CPU and runs ARPACK first).
 # One core: the library is single-threaded here, OMP_NUM_THREADS=1 keeps CHOLMOD and
 # OpenBLAS on one thread.  BLAS_DIR=DIR runs the certification rows again with
 # LD_LIBRARY_PATH=DIR, labelled blas=DIR.
@@ -44,25 +47,29 @@ load() { cut -d' ' -f1 /proc/loadavg; }
 
 # 1. 10^6 particles
 "$B" gen 1000 "$work/p.csv"
-particles_rep() { # FILE VARIANT REP
-  local f=$1 variant=$2 r=$3 ld
+particles_rep() { # FILE VARIANT REP [BENCH MFSTAB LABEL]
+  local f=$1 variant=$2 r=$3 b=${4:-$B} mf=${5:-$M} label=${6:-default} ld
   ld=$(load)
-  row=$("$B" gershgorin "$f" 0.002)
+  row=$("$b" gershgorin "$f" 0.002)
   IFS=, read -r _ n _ rd geo pl ge tot cpu lam dt rss crd cgeo cpl cge <<<"$row"
   for ph in read:$rd:$crd geometry:$geo:$cgeo plan:$pl:$cpl gershgorin:$ge:$cge; do
     IFS=: read -r name s c <<<"$ph"
-    echo "particles,$n,$variant,$name,rep$r,$s,$c,,$rss,default,$ld" >>"$tmp"
+    echo "particles,$n,$variant,$name,rep$r,$s,$c,,$rss,$label,$ld" >>"$tmp"
   done
-  echo "particles,$n,$variant,total,rep$r,$tot,$cpu,$dt,$rss,default,$ld" >>"$tmp"
+  echo "particles,$n,$variant,total,rep$r,$tot,$cpu,$dt,$rss,$label,$ld" >>"$tmp"
   ld=$(load)
-  /usr/bin/time -f "%e %U %S %M" -o "$work/time" "$M" bound --particles "$f" \
+  /usr/bin/time -f "%e %U %S %M" -o "$work/time" "$mf" bound --particles "$f" \
     --support 0.002 -o "$work/bound.csv"
   read -r wall us ss kb <"$work/time"
   dtg=$(awk -F, 'NR == 1 { for (i = 1; i <= NF; i++) h[$i] = i } NR == 2 { print $h["dt_gershgorin_s"] }' "$work/bound.csv")
-  echo "particles,$n,$variant,mfstab_bound,rep$r,$wall,$(awk -v a="$us" -v b="$ss" 'BEGIN { print a + b }'),$dtg,$(awk -v k="$kb" 'BEGIN { printf "%.1f", k / 1024 }'),default,$ld" >>"$tmp"
+  echo "particles,$n,$variant,mfstab_bound,rep$r,$wall,$(awk -v a="$us" -v b="$ss" 'BEGIN { print a + b }'),$dtg,$(awk -v k="$kb" 'BEGIN { printf "%.1f", k / 1024 }'),$label,$ld" >>"$tmp"
 }
+BB=${BASE_BUILD:+$BASE_BUILD/analysis/bench/bench_check}
+BM=${BASE_BUILD:+$BASE_BUILD/tools/mfstab}
 for r in $(seq 1 "$REPS"); do
+  if [ -n "$BB" ] && [ $((r % 2)) = 0 ]; then particles_rep "$work/p.csv" volumes "$r" "$BB" "$BM" base; fi
   particles_rep "$work/p.csv" volumes "$r"
+  if [ -n "$BB" ] && [ $((r % 2)) = 1 ]; then particles_rep "$work/p.csv" volumes "$r" "$BB" "$BM" base; fi
 done
 if [ "${DELAUNAY:-0}" = 1 ]; then
   "$B" gen 1000 "$work/pn.csv" --novol
@@ -70,6 +77,20 @@ if [ "${DELAUNAY:-0}" = 1 ]; then
 fi
 
 # 2. dt_certified against ARPACK, alternating which runs first
+certify_one() { # BENCH LABEL SIDE REP QUAD PERTURB MASS [--certify-first]
+  local b=$1 label=$2 side=$3 r=$4 ld row var st
+  ld=$(load)
+  row=$(env "${envs[@]}" "$b" certify "$side" --quadrature "$5" --perturb "$6" --mass "$7" ${8:-})
+  IFS=, read -r _ n mass q asm ars mv lam cs ls fs nf fnnz gf sig frac tr cr rss acpu ccpu cf <<<"$row"
+  var="$q-perturb$6-$7"
+  st="rep$r"
+  echo "certify,$n,$var,assembly,$st,$asm,,,$rss,$label,$ld" >>"$tmp"
+  echo "certify,$n,$var,arpack_lambda_max,$st,$ars,${acpu:-},$lam,$rss,$label,$ld" >>"$tmp"
+  echo "certify,$n,$var,lanczos_1e-4,$st,$ls,,,$rss,$label,$ld" >>"$tmp"
+  echo "certify,$n,$var,factorizations,$st,$fs,,$nf,$rss,$label,$ld" >>"$tmp"
+  echo "certify,$n,$var,dt_certified,$st,$cs,${ccpu:-},$frac,$rss,$label,$ld" >>"$tmp"
+  echo "certify,$n,$var,time_ratio,$st,$tr,$cr,$fnnz,$rss,$label,$ld" >>"$tmp"
+}
 certify_rows() { # LABEL
   local label=$1
   for side in 100 316; do
@@ -77,17 +98,13 @@ certify_rows() { # LABEL
       first=$([ $((r % 2)) = 0 ] && echo --certify-first || true)
       for v in "nodal 0.2 lumped" "gauss2 0 lumped" "nodal 0.2 consistent"; do
         set -- $v
-        ld=$(load)
-        row=$(env "${envs[@]}" "$B" certify $side --quadrature "$1" --perturb "$2" --mass "$3" $first)
-        IFS=, read -r _ n mass q asm ars mv lam cs ls fs nf fnnz gf sig frac tr cr rss acpu ccpu cf <<<"$row"
-        var="$q-perturb$2-$mass"
-        st="rep$r"
-        echo "certify,$n,$var,assembly,$st,$asm,,,$rss,$label,$ld" >>"$tmp"
-        echo "certify,$n,$var,arpack_lambda_max,$st,$ars,$acpu,$lam,$rss,$label,$ld" >>"$tmp"
-        echo "certify,$n,$var,lanczos_1e-4,$st,$ls,,,$rss,$label,$ld" >>"$tmp"
-        echo "certify,$n,$var,factorizations,$st,$fs,,$nf,$rss,$label,$ld" >>"$tmp"
-        echo "certify,$n,$var,dt_certified,$st,$cs,$ccpu,$frac,$rss,$label,$ld" >>"$tmp"
-        echo "certify,$n,$var,time_ratio,$st,$tr,$cr,$fnnz,$rss,$label,$ld" >>"$tmp"
+        if [ -n "$BB" ] && [ "$side" = 316 ] && [ $((r % 2)) = 0 ]; then
+          certify_one "$BB" base $side $r $1 $2 $3
+        fi
+        certify_one "$B" "$label" $side $r $1 $2 $3 $first
+        if [ -n "$BB" ] && [ "$side" = 316 ] && [ $((r % 2)) = 1 ]; then
+          certify_one "$BB" base $side $r $1 $2 $3
+        fi
       done
     done
   done
@@ -96,6 +113,7 @@ envs=(MFS_BENCH=1)
 certify_rows default
 if [ -n "${BLAS_DIR:-}" ]; then
   envs=(LD_LIBRARY_PATH="$BLAS_DIR")
+  BB=
   certify_rows "$BLAS_DIR"
 fi
 
