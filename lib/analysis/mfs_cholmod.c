@@ -48,22 +48,26 @@ static int key_less(const double *x, int dim, int k, SuiteSparse_long a, SuiteSp
   return xa < xb || (xa == xb && a < b);
 }
 
+static void swap_long(SuiteSparse_long *a, SuiteSparse_long *b)
+{
+  SuiteSparse_long t = *a;
+  *a = *b;
+  *b = t;
+}
+
 /* Rearrange v[0..n) so that v[m] is the m-th by key and the ones before it
  * are not greater, the ones after not smaller (quickselect, median of three). */
 static void select_kth(SuiteSparse_long *v, size_t n, size_t m, const double *x, int dim, int k)
 {
   size_t lo = 0, hi = n - 1;
   while (hi > lo) {
-    size_t mid = lo + (hi - lo) / 2;
-    /* the median of v[lo], v[mid], v[hi] into v[mid] */
-    if (key_less(x, dim, k, v[mid], v[lo])) {
-      SuiteSparse_long t = v[mid]; v[mid] = v[lo]; v[lo] = t;
-    }
+    size_t mid = lo + (hi - lo) / 2; /* the median of v[lo], v[mid], v[hi] into v[mid] */
+    if (key_less(x, dim, k, v[mid], v[lo]))
+      swap_long(v + mid, v + lo);
     if (key_less(x, dim, k, v[hi], v[mid])) {
-      SuiteSparse_long t = v[mid]; v[mid] = v[hi]; v[hi] = t;
-      if (key_less(x, dim, k, v[mid], v[lo])) {
-        t = v[mid]; v[mid] = v[lo]; v[lo] = t;
-      }
+      swap_long(v + mid, v + hi);
+      if (key_less(x, dim, k, v[mid], v[lo]))
+        swap_long(v + mid, v + lo);
     }
     SuiteSparse_long piv = v[mid];
     size_t i = lo, j = hi;
@@ -73,7 +77,7 @@ static void select_kth(SuiteSparse_long *v, size_t n, size_t m, const double *x,
       while (key_less(x, dim, k, piv, v[j]))
         j--;
       if (i <= j) {
-        SuiteSparse_long t = v[i]; v[i] = v[j]; v[j] = t;
+        swap_long(v + i, v + j);
         i++;
         if (j == 0)
           break;
@@ -92,16 +96,13 @@ static void select_kth(SuiteSparse_long *v, size_t n, size_t m, const double *x,
 int mfs_cholmod_geometric_order(size_t n, const mfs_csr *A, const mfs_csr *B, const double *x,
                                 int dim, SuiteSparse_long *perm)
 {
-  enum { LEAF = 64 };
+  enum { LEAF = 64, STACK = 128 }; /* STACK: 2 entries a part, 2 parts a level, 32 levels */
+  int ok = 0;
   unsigned char *side = mfs_calloc(n ? n : 1, 1);
   SuiteSparse_long *tmp = mfs_malloc((n ? n : 1) * sizeof *tmp);
-  size_t *stack = mfs_malloc(2 * 64 * sizeof *stack);
-  if (!side || !tmp || !stack) {
-    mfs_free(side);
-    mfs_free(tmp);
-    mfs_free(stack);
-    return 0;
-  }
+  size_t *stack = mfs_malloc(STACK * sizeof *stack);
+  if (!side || !tmp || !stack)
+    goto done;
   for (size_t i = 0; i < n; i++)
     perm[i] = (SuiteSparse_long)i;
   size_t top = 0;
@@ -150,19 +151,20 @@ int mfs_cholmod_geometric_order(size_t n, const mfs_csr *A, const mfs_csr *B, co
     for (size_t t = 0; t < nr; t++)
       tmp[nl + t] = v[half + t];
     /* tmp[len - ns .. len) holds the separator reversed: any order will do */
-    for (size_t t = 0; t < len; t++) {
+    for (size_t t = 0; t < len; t++)
       side[v[t]] = 0;
-    }
     memcpy(v, tmp, len * sizeof *v);
-    if (top + 4 <= 2 * 64) { /* depth at most 32: the halves shrink geometrically */
+    if (top + 4 <= STACK) { /* the parts halve: 32 levels are 2^32 times LEAF unknowns */
       stack[top++] = lo;
       stack[top++] = lo + nl;
       stack[top++] = lo + nl;
       stack[top++] = lo + nl + nr;
     }
   }
+  ok = 1;
+done:
   mfs_free(side);
   mfs_free(tmp);
   mfs_free(stack);
-  return 1;
+  return ok;
 }
