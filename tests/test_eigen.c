@@ -135,6 +135,37 @@ static void check_max(const mfs_model_spec *s, const char *what)
           cr.lambda_upper <= ref * (1.0 + 1e-5),
         "%s: search from the Lanczos value: ok %d sigma/lambda_max %.9f after %d", what, cr.ok,
         cr.sigma / ref, cr.factorizations);
+  /* the factorization in the geometric order (the particles' coordinates, as mfstab bound
+   * --certify passes them): the same search, the same sigma; 1.001 and 0.999 lambda_max */
+  double *x = mfs_model_coords(m);
+  CHECK(x != NULL, "%s: mfs_model_coords", what);
+  if (x) {
+    mfs_certify_opts cg = {.lambda_est = lam, .coord = x, .coord_dim = m->p->dim};
+    mfs_certify_result rg;
+    st = mfs_eig_certify_search(&P, &cg, &rg);
+    CHECK(st == MFS_OK && rg.ok && rg.sigma == cr.sigma && rg.factorizations == cr.factorizations,
+          "%s: geometric order: ok %d sigma %.17g vs %.17g after %d vs %d", what, rg.ok, rg.sigma,
+          cr.sigma, rg.factorizations, cr.factorizations);
+    CHECK(rg.margin > 0.0 && rg.margin < 1e-10, "%s: geometric order: margin %.3g", what,
+          rg.margin);
+    double at[2] = {1.001, 0.999};
+    for (int k = 0; k < 2; k++) {
+      mfs_certify_opts c1 = {.lambda_est = at[k] * ref, .gap = 1e-300, .max_factorizations = 1,
+                             .coord = x, .coord_dim = m->p->dim};
+      st = mfs_eig_certify_search(&P, &c1, &rg);
+      CHECK(st == MFS_OK && rg.ok == (k == 0), "%s: geometric order at %.3f lambda_max: ok %d",
+            what, at[k], rg.ok);
+    }
+    for (size_t i = 0; i < m->n; i++) /* the coordinates are the particles' */
+      for (int d = 0; d < m->p->dim; d++)
+        if (x[i * (size_t)m->p->dim + (size_t)d] !=
+            m->p->x[(m->dof[i] / (size_t)m->ndof) * (size_t)m->p->dim + (size_t)d]) {
+          CHECK(0, "%s: coordinate %zu,%d", what, i, d);
+          i = m->n;
+          break;
+        }
+  }
+  mfs_free(x);
   free(w);
   mfs_model_free(m);
 }

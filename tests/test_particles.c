@@ -261,7 +261,7 @@ static int cmp_double(const void *a, const void *b)
   return (x > y) - (x < y);
 }
 
-/* The spacing's median (a bisection on the values, no allocation) against a
+/* The spacing's median (a radix selection on the values, no allocation) against a
  * sorted copy: odd and even counts, repeated values, values of both signs. */
 static void test_spacing_median(gsl_rng *r)
 {

@@ -1,5 +1,6 @@
 #include "cli.h"
 #include "mfs_alloc.h"
+#include "cli_decimal.h"
 
 #include <errno.h>
 #include <fcntl.h>
@@ -93,6 +94,8 @@ int cli_parse_double(const char *s, double *v)
     return 0;
   if (*c != '\0')
     return 0;
+  if (cli_decimal(s, v)) /* exact, bit-identical to strtod, without its multiple precision */
+    return 1;
   char *end;
   double x = strtod(s, &end);
   if (*end != '\0' || !isfinite(x)) /* overflow; an underflow to a subnormal is fine */

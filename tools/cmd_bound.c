@@ -164,8 +164,12 @@ int cmd_bound(int argc, char **argv)
     st = mfs_eig_max(&P, &eo, &lan, NULL, &info);
     if (st != MFS_OK || !(lan > 0.0))
       cli_die(1, "certification: the Lanczos estimate failed (%s)", mfs_strerror(st));
-    mfs_certify_opts co = {.lambda_est = lan, .gap = 4e-4};
+    double *x = mfs_model_coords(m); /* the factorization ordered by the particles' positions */
+    if (!x)
+      cli_die(1, "certification: out of memory");
+    mfs_certify_opts co = {.lambda_est = lan, .gap = 4e-4, .coord = x, .coord_dim = m->p->dim};
     st = mfs_eig_certify_search(&P, &co, &cr);
+    mfs_free(x);
     if (st != MFS_OK)
       cli_die(1, "certification: %s", mfs_strerror(st));
     have_cert = cr.ok;

@@ -163,8 +163,13 @@ void model_run(const model_cmd *c, const run_opts *o, run_result *r)
   if (o->certify) {
     /* from the Lanczos value: it lies below lambda_max by about the ARPACK tolerance */
     double tol = o->arpack_tol > 0.0 ? o->arpack_tol : 1e-15;
-    mfs_certify_opts co = {.lambda_est = r->lambda, .gap = fmax(1e-6, 4.0 * tol)};
+    double *x = mfs_model_coords(m); /* the factorization ordered by the particles' positions */
+    if (!x)
+      cli_die(1, "certification: out of memory");
+    mfs_certify_opts co = {.lambda_est = r->lambda, .gap = fmax(1e-6, 4.0 * tol), .coord = x,
+                           .coord_dim = m->p->dim};
     st = mfs_eig_certify_search(&P, &co, &r->cr);
+    mfs_free(x);
     if (st != MFS_OK)
       cli_die(1, "certification: %s", mfs_strerror(st));
     r->have_cert = 1;

@@ -13,15 +13,18 @@
  *       volumes), plan (cell lists, shape table), dt_gershgorin (the rows of
  *       K streamed from the table); cubic MLS, nodal by default
  *       CSV: job,particles,quadrature,read_s,geometry_s,plan_s,gershgorin_s,total_s,
- *            total_cpu_s,lambda_gershgorin,dt_gershgorin,peak_rss_mb (phases: wall clock;
- *            total_cpu_s: the process's CPU time, user + system, the measure on a
- *            shared machine)
+ *            total_cpu_s,lambda_gershgorin,dt_gershgorin,peak_rss_mb,read_cpu_s,
+ *            geometry_cpu_s,plan_cpu_s,gershgorin_cpu_s (phases: wall clock, then the
+ *            process's CPU time, user + system, the measure on a shared machine)
  *   bench_check certify SIDE [--perturb F] [--mass lumped|consistent] [--header]
+ *                      [--certify-first]
  *       the perturbed SIDE x SIDE model (cubic MLS, D = 2, nodal, anti-plane,
  *       free): lambda_max by ARPACK at relative accuracy 1e-12 (what mfstab eigs
  *       does), against dt_certified the way mfstab bound --certify gets it
  *       (ARPACK at 1e-4, then the factorizations of sigma M - K)
- *       (--quadrature RULE for another rule)
+ *       (--quadrature RULE for another rule), ARPACK first unless --certify-first;
+ *       the factorization ordered by the particles' coordinates as mfstab does
+ *       (mfs_model_coords), or by CHOLMOD's AMD with --amd
  *       CSV: job,particles,mass,quadrature,assembly_s,arpack_s,arpack_matvecs,lambda_max,
  *            certify_s,lanczos_s,factor_s,factorizations,factor_nnz,factor_gflops,
  *            sigma_certified,certified_fraction,time_ratio,cpu_ratio,peak_rss_mb
@@ -99,7 +102,7 @@ static int gershgorin(const char *path, double a, const char *rule, int header)
   double c0 = cpu(), t0 = now();
   particle_file pf;
   particle_file_read(&pf, path, 1e-10);
-  double t1 = now();
+  double t1 = now(), c1 = cpu();
   int novol = pf.vol == NULL;
   particle_file_volumes(&pf); /* without volumes: Qhull, timed as geometry */
   mfs_disc d = mfs_disc_default();
@@ -116,13 +119,13 @@ static int gershgorin(const char *path, double a, const char *rule, int header)
     fprintf(stderr, "bench_check: geometry: %s\n", mfs_strerror(st));
     return 1;
   }
-  double t2 = now();
+  double t2 = now(), c2 = cpu();
   mfs_plan *pl = mfs_plan_alloc(&d, p, q, &st);
   if (!pl || mfs_plan_tabulate(pl, 1, NULL) != MFS_OK) {
     fprintf(stderr, "bench_check: plan: %s\n", mfs_strerror(st));
     return 1;
   }
-  double t3 = now();
+  double t3 = now(), c3 = cpu();
   mfs_gershgorin_result g;
   st = mfs_gershgorin_plan(pl, &d.material, NULL, &g);
   double t4 = now(), c4 = cpu();
@@ -130,10 +133,11 @@ static int gershgorin(const char *path, double a, const char *rule, int header)
     return 1;
   if (header)
     puts("job,particles,quadrature,read_s,geometry_s,plan_s,gershgorin_s,total_s,total_cpu_s,"
-         "lambda_gershgorin,dt_gershgorin,peak_rss_mb");
-  printf("gershgorin%s,%zu,%s,%.4f,%.4f,%.4f,%.4f,%.4f,%.4f,%.10g,%.10g,%.1f\n",
+         "lambda_gershgorin,dt_gershgorin,peak_rss_mb,read_cpu_s,geometry_cpu_s,plan_cpu_s,"
+         "gershgorin_cpu_s");
+  printf("gershgorin%s,%zu,%s,%.4f,%.4f,%.4f,%.4f,%.4f,%.4f,%.10g,%.10g,%.1f,%.4f,%.4f,%.4f,%.4f\n",
          novol ? "_novol" : "", pf.n, rule, t1 - t0, t2 - t1, t3 - t2, t4 - t3, t4 - t0, c4 - c0,
-         g.lambda, mfs_dt_crit(g.lambda), peak_mb());
+         g.lambda, mfs_dt_crit(g.lambda), peak_mb(), c1 - c0, c2 - c1, c3 - c2, c4 - c3);
   mfs_plan_free(pl);
   mfs_quad_free(q);
   mfs_particles_free(p);
@@ -141,7 +145,41 @@ static int gershgorin(const char *path, double a, const char *rule, int header)
   return 0;
 }
 
-static int certify(int side, double perturb, int consistent, const char *rule, int header)
+/* ARPACK's lambda_max at 1e-12: wall and CPU seconds into t[0], c[0]. */
+static mfs_status arpack_full(const mfs_pencil *P, double *lam, int *mv, double *t, double *c)
+{
+  mfs_eig_info info;
+  mfs_eig_opts full = {0, 0, 1e-12};
+  double t0 = now(), c0 = cpu();
+  mfs_status st = mfs_eig_max(P, &full, lam, NULL, &info);
+  *t = now() - t0;
+  *c = cpu() - c0;
+  *mv = info.matvecs;
+  return st;
+}
+
+/* dt_certified as mfstab bound --certify gets it: ARPACK at 1e-4, then the
+ * factorizations; t[0..2], c[0]: total, estimate, factorizations (wall), total CPU. */
+static mfs_status certified(const mfs_pencil *P, const double *x, int dim, mfs_certify_result *cr,
+                            double *t, double *c)
+{
+  mfs_eig_info info;
+  mfs_eig_opts quick = {0, 0, 1e-4};
+  double lan, t0 = now(), c0 = cpu();
+  mfs_status st = mfs_eig_max(P, &quick, &lan, NULL, &info);
+  double t1 = now();
+  mfs_certify_opts co = {.lambda_est = lan, .gap = 4e-4, .coord = x, .coord_dim = x ? dim : 0};
+  if (st == MFS_OK)
+    st = mfs_eig_certify_search(P, &co, cr);
+  t[0] = now() - t0;
+  t[1] = t1 - t0;
+  t[2] = now() - t1;
+  *c = cpu() - c0;
+  return st;
+}
+
+static int certify(int side, double perturb, int consistent, const char *rule, int header,
+                   int cert_first, int amd)
 {
   mfs_model_spec s = {.disc = model_disc(side, perturb)};
   s.disc.consistent_mass = consistent;
@@ -156,35 +194,37 @@ static int certify(int side, double perturb, int consistent, const char *rule, i
     return 1;
   }
   mfs_model_release_plan(m);
-  double t1 = now(), c1 = cpu();
+  double t1 = now();
   mfs_pencil P = {m->K, m->M, m->m};
-  mfs_eig_info info;
-  mfs_eig_opts full = {0, 0, 1e-12}, quick = {0, 0, 1e-4};
-  double lam, lan;
-  st = mfs_eig_max(&P, &full, &lam, NULL, &info);
-  double t2 = now(), c2 = cpu();
-  if (st != MFS_OK)
-    return 1;
-  int mv = info.matvecs;
-  st = mfs_eig_max(&P, &quick, &lan, NULL, &info);
-  double t3 = now();
-  mfs_certify_opts co = {.lambda_est = lan, .gap = 4e-4};
   mfs_certify_result cr;
-  if (st == MFS_OK)
-    st = mfs_eig_certify_search(&P, &co, &cr);
-  double t4 = now(), c4 = cpu();
+  double *x = amd ? NULL : mfs_model_coords(m); /* mfstab bound --certify passes them */
+  if (!amd && !x)
+    return 1;
+  double lam = 0.0, ta = 0.0, ca = 0.0, tc[3] = {0, 0, 0}, cc = 0.0;
+  int mv = 0;
+  /* both on the same model in one process, in the order asked (the script alternates it) */
+  if (cert_first) {
+    st = certified(&P, x, m->p->dim, &cr, tc, &cc);
+    if (st == MFS_OK)
+      st = arpack_full(&P, &lam, &mv, &ta, &ca);
+  } else {
+    st = arpack_full(&P, &lam, &mv, &ta, &ca);
+    if (st == MFS_OK)
+      st = certified(&P, x, m->p->dim, &cr, tc, &cc);
+  }
+  mfs_free(x);
   if (st != MFS_OK || !cr.ok)
     return 1;
   if (header)
     puts("job,particles,mass,quadrature,assembly_s,arpack_s,arpack_matvecs,lambda_max,certify_s,"
          "lanczos_s,factor_s,factorizations,factor_nnz,factor_gflops,sigma_certified,certified_fraction,"
-         "time_ratio,cpu_ratio,peak_rss_mb");
+         "time_ratio,cpu_ratio,peak_rss_mb,arpack_cpu_s,certify_cpu_s,certify_first");
   printf("certify,%zu,%s,%s,%.4f,%.4f,%d,%.12g,%.4f,%.4f,%.4f,%d,%.0f,%.3f,%.12g,%.8f,%.4f,%.4f,"
-         "%.1f\n",
-         m->p->n, consistent ? "consistent" : "lumped", s.disc.quadrature->name, t1 - t0, t2 - t1, mv,
-         lam, t4 - t2, t3 - t2, t4 - t3, cr.factorizations, cr.factor_nnz, cr.flops * 1e-9,
-         cr.lambda_upper, sqrt(lam / cr.lambda_upper), (t4 - t2) / (t2 - t1),
-         (c4 - c2) / (c2 - c1), peak_mb());
+         "%.1f,%.4f,%.4f,%d\n",
+         m->p->n, consistent ? "consistent" : "lumped", s.disc.quadrature->name, t1 - t0, ta, mv,
+         lam, tc[0], tc[1], tc[2], cr.factorizations, cr.factor_nnz, cr.flops * 1e-9,
+         cr.lambda_upper, sqrt(lam / cr.lambda_upper), tc[0] / ta, cc / ca, peak_mb(), ca, cc,
+         cert_first);
   mfs_model_free(m);
   return 0;
 }
@@ -197,7 +237,7 @@ int main(int argc, char **argv)
     return 2;
   }
   double perturb = 0.2;
-  int novol = 0, header = 0, consistent = 0;
+  int novol = 0, header = 0, consistent = 0, cert_first = 0, amd = 0;
   const char *rule = "nodal";
   for (int i = 3; i < argc; i++) {
     if (strcmp(argv[i], "--perturb") == 0 && i + 1 < argc)
@@ -206,6 +246,10 @@ int main(int argc, char **argv)
       novol = 1;
     else if (strcmp(argv[i], "--header") == 0)
       header = 1;
+    else if (strcmp(argv[i], "--certify-first") == 0)
+      cert_first = 1;
+    else if (strcmp(argv[i], "--amd") == 0)
+      amd = 1;
     else if (strcmp(argv[i], "--quadrature") == 0 && i + 1 < argc)
       rule = argv[++i];
     else if (strcmp(argv[i], "--mass") == 0 && i + 1 < argc)
@@ -216,7 +260,7 @@ int main(int argc, char **argv)
   if (strcmp(argv[1], "gershgorin") == 0 && argc >= 4)
     return gershgorin(argv[2], atof(argv[3]), rule, header);
   if (strcmp(argv[1], "certify") == 0)
-    return certify(atoi(argv[2]), perturb, consistent, rule, header);
+    return certify(atoi(argv[2]), perturb, consistent, rule, header, cert_first, amd);
   fprintf(stderr, "bench_check: unknown job %s\n", argv[1]);
   return 2;
 }

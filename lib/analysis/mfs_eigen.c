@@ -852,25 +852,44 @@ typedef struct {
   cholmod_common c;
   cholmod_sparse *Ku, *Mu;
   cholmod_factor *L;
+  SuiteSparse_long *perm; /* a geometric order, or NULL: CHOLMOD's */
 } cert_ws;
 
 static void cert_free(cert_ws *w)
 {
+  mfs_free(w->perm);
   cholmod_l_free_factor(&w->L, &w->c);
   cholmod_l_free_sparse(&w->Ku, &w->c);
   cholmod_l_free_sparse(&w->Mu, &w->c);
   cholmod_l_finish(&w->c);
 }
 
-static int cert_init(cert_ws *w, const mfs_pencil *P)
+enum { CERT_AMD_MAX = 300000 };
+
+/* x (n x dim, or NULL): the unknowns' coordinates, for a geometric order. */
+static int cert_init(cert_ws *w, const mfs_pencil *P, const double *x, int dim)
 {
   memset(w, 0, sizeof *w);
   mfs_cholmod_start(&w->c);
   w->c.supernodal = CHOLMOD_SUPERNODAL; /* LL', stops at the first bad pivot */
-  /* nested dissection: 20-25% less fill than AMD on these 2D stencils, and
-   * 10-25% less time (measured: analysis/bench/bench_check.c) */
+  /* the ordering's own cost counts: at 10^5 particles (2D, cubic MLS, one
+   * core) CHOLMOD's nested dissection (NESDIS) spent 1.8-2.0 s ordering and
+   * 1.9-2.3 s factoring, METIS 1.4-1.6 s and 1.8-2.0 s, AMD 0.2-0.3 s and
+   * 2.3-2.7 s (up to twice the flops of nested dissection, 1.05-1.3 times its
+   * entries).  With the unknowns' coordinates, a geometric nested dissection
+   * (mfs_cholmod_geometric_order: the fill of nested dissection in less time
+   * than AMD); without, AMD up to CERT_AMD_MAX unknowns, METIS above, where
+   * AMD's extra fill grows faster than METIS's cost (measured:
+   * analysis/bench/bench_check.c) */
   w->c.nmethods = 1;
-  w->c.method[0].ordering = CHOLMOD_NESDIS;
+  w->c.method[0].ordering = P->K->nrow <= CERT_AMD_MAX ? CHOLMOD_AMD : CHOLMOD_METIS;
+  if (x && dim > 0) {
+    size_t n = P->K->nrow;
+    w->perm = mfs_malloc((n ? n : 1) * sizeof *w->perm);
+    if (!w->perm || !mfs_cholmod_geometric_order(n, P->K, P->M, x, dim, w->perm))
+      return MFS_ENOMEM;
+    w->c.method[0].ordering = CHOLMOD_GIVEN;
+  }
   w->Ku = mfs_cholmod_upper(P->K, &w->c);
   w->Mu = P->M ? mfs_cholmod_upper(P->M, &w->c) : diag_of(P->K->nrow, P->m, &w->c);
   return w->Ku && w->Mu ? MFS_OK : MFS_ENOMEM;
@@ -914,7 +933,7 @@ static int cert_factor(cert_ws *w, double sigma, mfs_certificate *out)
   if (!F)
     return MFS_ENOMEM;
   if (!w->L) {
-    w->L = cholmod_l_analyze(F, c);
+    w->L = w->perm ? cholmod_l_analyze_p(F, w->perm, NULL, 0, c) : cholmod_l_analyze(F, c);
     if (!w->L) {
       cholmod_l_free_sparse(&F, c);
       return MFS_ENOMEM;
@@ -949,7 +968,7 @@ mfs_status mfs_eig_certify(const mfs_pencil *P, double sigma, mfs_certificate *o
   if (st != MFS_OK || !(sigma > 0.0) || !isfinite(sigma))
     return MFS_EINVAL;
   cert_ws w;
-  st = cert_init(&w, P);
+  st = cert_init(&w, P, NULL, 0);
   if (st == MFS_OK)
     st = cert_factor(&w, sigma, out);
   cert_free(&w);
@@ -966,7 +985,7 @@ mfs_status mfs_eig_certify_search(const mfs_pencil *P, const mfs_certify_opts *o
   double gap = o->gap > 0.0 ? o->gap : 1e-6, growth = o->growth > 1.0 ? o->growth : 10.0;
   int maxf = o->max_factorizations > 0 ? o->max_factorizations : 30;
   cert_ws w;
-  st = cert_init(&w, P);
+  st = cert_init(&w, P, o->coord_dim > 0 ? o->coord : NULL, o->coord_dim);
   double lo = o->lambda_est, hi = 0.0;
   mfs_certificate c, best = {0};
   while (st == MFS_OK && r->factorizations < maxf) {

@@ -178,6 +178,10 @@ typedef struct {
   double growth;          /* gap growth after a failure (default 10) */
   int max_factorizations; /* default 30 */
   int refine;             /* bisection steps after the first success (default 0) */
+  const double *coord;    /* optional: the unknowns' coordinates (order x coord_dim), for a
+                             geometric fill-reducing order (nested dissection by coordinate
+                             bisection); NULL: AMD (METIS above 3e5 unknowns) */
+  int coord_dim;          /* 1, 2 or 3 with coord */
 } mfs_certify_opts;
 
 typedef struct {

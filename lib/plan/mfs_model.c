@@ -75,6 +75,20 @@ void mfs_model_release_plan(mfs_model *m)
   m->q = NULL;
 }
 
+double *mfs_model_coords(const mfs_model *m)
+{
+  const int dim = m->p->dim, nd = m->ndof;
+  double *x = mfs_malloc((m->n ? m->n : 1) * (size_t)dim * sizeof *x);
+  if (!x)
+    return NULL;
+  for (size_t i = 0; i < m->n; i++) {
+    size_t I = m->dof[i] / (size_t)nd;
+    for (int k = 0; k < dim; k++)
+      x[i * (size_t)dim + (size_t)k] = m->p->x[I * (size_t)dim + (size_t)k];
+  }
+  return x;
+}
+
 /* A second matrix with A's pattern (values not set). */
 static mfs_csr *same_pattern(const mfs_csr *A)
 {

@@ -92,6 +92,11 @@ void mfs_model_free(mfs_model *m);
  * memory of a large model, once the bound has been computed. */
 void mfs_model_release_plan(mfs_model *m);
 
+/* The coordinates of the free degrees of freedom: m->n x m->p->dim, row i
+ * the position of the particle of dof i (for geometric orderings:
+ * mfs_certify_opts.coord).  Free with mfs_free(); NULL on out of memory. */
+double *mfs_model_coords(const mfs_model *m);
+
 /* The rigid-body fields of the model that are admissible (satisfy the
  * fixed conditions): none when particles are fixed; else the constant field
  * (scalar), or the two translations and, unless periodic, the in-plane
