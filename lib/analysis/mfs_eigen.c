@@ -975,6 +975,27 @@ mfs_status mfs_eig_certify(const mfs_pencil *P, double sigma, mfs_certificate *o
   return st;
 }
 
+/* One trial of the search at sigma: a success becomes the upper end hi (and
+ * its certificate best), a failure the lower end lo and, if the largest,
+ * r->sigma_failed.  Counts the factorization. */
+static mfs_status cert_try(cert_ws *w, double sigma, mfs_certify_result *r, double *lo, double *hi,
+                           mfs_certificate *best)
+{
+  mfs_certificate c;
+  mfs_status st = cert_factor(w, sigma, &c);
+  r->factorizations++;
+  if (st != MFS_OK)
+    return st;
+  if (c.ok) {
+    *hi = sigma;
+    *best = c;
+  } else {
+    *lo = sigma;
+    r->sigma_failed = sigma > r->sigma_failed ? sigma : r->sigma_failed;
+  }
+  return MFS_OK;
+}
+
 mfs_status mfs_eig_certify_search(const mfs_pencil *P, const mfs_certify_opts *o,
                                   mfs_certify_result *r)
 {
@@ -987,36 +1008,14 @@ mfs_status mfs_eig_certify_search(const mfs_pencil *P, const mfs_certify_opts *o
   cert_ws w;
   st = cert_init(&w, P, o->coord_dim > 0 ? o->coord : NULL, o->coord_dim);
   double lo = o->lambda_est, hi = 0.0;
-  mfs_certificate c, best = {0};
-  while (st == MFS_OK && r->factorizations < maxf) {
-    double sigma = o->lambda_est * (1.0 + gap);
-    st = cert_factor(&w, sigma, &c);
-    r->factorizations++;
-    if (st != MFS_OK)
-      break;
-    if (c.ok) {
-      hi = sigma;
-      best = c;
-      break;
-    }
-    lo = sigma;
-    r->sigma_failed = sigma;
+  mfs_certificate best = {0};
+  /* bracket: sigma's gap grows by `growth` until a factorization succeeds */
+  while (st == MFS_OK && hi == 0.0 && r->factorizations < maxf) {
+    st = cert_try(&w, o->lambda_est * (1.0 + gap), r, &lo, &hi, &best);
     gap *= growth;
   }
-  for (int k = 0; st == MFS_OK && hi > 0.0 && k < o->refine && r->factorizations < maxf; k++) {
-    double sigma = 0.5 * (lo + hi);
-    st = cert_factor(&w, sigma, &c);
-    r->factorizations++;
-    if (st != MFS_OK)
-      break;
-    if (c.ok) {
-      hi = sigma;
-      best = c;
-    } else {
-      lo = sigma;
-      r->sigma_failed = sigma > r->sigma_failed ? sigma : r->sigma_failed;
-    }
-  }
+  for (int k = 0; st == MFS_OK && hi > 0.0 && k < o->refine && r->factorizations < maxf; k++)
+    st = cert_try(&w, 0.5 * (lo + hi), r, &lo, &hi, &best); /* bisection */
   if (st == MFS_OK && hi > 0.0) {
     r->ok = 1;
     r->sigma = hi;
