@@ -120,7 +120,10 @@ void model_run(const model_cmd *c, const run_opts *o, run_result *r)
     if (!r->vmax)
       cli_die(1, "out of memory");
   }
-  st = mfs_eig_max(&P, &eo, &r->lambda, r->vmax, &info);
+  mfs_eig_opts emax = eo;
+  if (o->lambda_tol > 0.0)
+    emax.tol = o->lambda_tol;
+  st = mfs_eig_max(&P, &emax, &r->lambda, r->vmax, &info);
   if (st != MFS_OK)
     die_eig(st, &info, "lambda_max");
   if (!(r->lambda > 0.0))
@@ -157,7 +160,7 @@ void model_run(const model_cmd *c, const run_opts *o, run_result *r)
   }
   if (o->certify) {
     /* from the Lanczos value: it lies below lambda_max by about the ARPACK tolerance */
-    double tol = o->arpack_tol > 0.0 ? o->arpack_tol : 1e-15;
+    double tol = o->lambda_tol > 0.0 ? o->lambda_tol : o->arpack_tol > 0.0 ? o->arpack_tol : 1e-15;
     mfs_certify_opts co = {.lambda_est = r->lambda, .gap = fmax(1e-6, 4.0 * tol)};
     st = mfs_eig_certify_search(&P, &co, &r->cr);
     if (st != MFS_OK)
