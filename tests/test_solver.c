@@ -41,9 +41,9 @@ static void test_energy(const char *quad, double S0)
     v[I] = 0.01 * sin(2.7 * (double)I) + 0.02 * cos(0.9 * (double)I);
   CHECK(mfs_solver_set_state(s, NULL, v) == MFS_OK, "set_state");
   free(v);
-  /* the leapfrog (shadow-)energy oscillation is O((omega dt)^2); dt_crit is
-   * within 5% of the true limit 2/omega_max, and at 0.15 of it the oscillation
-   * stays below 2% (about 4% at a quarter) */
+  /* the leapfrog (shadow-)energy oscillation is O((omega dt)^2); dt_crit (the
+   * Gershgorin rule) is at most the true limit 2/omega_max, and at 0.15 of it
+   * the oscillation stays below 2% (about 4% at a quarter of the limit) */
   mfs_solver_set_dt(s, 0.15 * s->dt_crit, 0);
   double k, p;
   mfs_solver_energy(s, &k, &p);

@@ -47,7 +47,8 @@ static const char about_1d[] =
   "  [time]           end* (s), dt (s) or safety (0.9: dt = safety * dt_crit), scheme\n"
   "                   (leapfrog | euler | rk2 | rk4), force (0: a dt above the central-\n"
   "                   difference limit 2/sqrt(lambda_max) is refused), max_steps (10^8: a\n"
-  "                   longer run is refused)\n"
+  "                   longer run is refused), step_rule (gershgorin | certified | power: the\n"
+  "                   rule of dt_crit; --step-rule overrides it)\n"
   "  [output]         probes* (v_center, u_center, kinetic_energy, potential_energy,\n"
   "                   total_energy, sigma_end, sigma_center, mode_amp, max_v, v_mid, v_err), every (1),\n"
   "                   mode (1: kappa dX/pi of mode_amp = (2/n) |sum_I u_I exp(-i kappa X_I)|)\n";
