@@ -694,6 +694,22 @@ dg=$(cat "$tmp/dtc_gershgorin"); dc=$(cat "$tmp/dtc_certified"); dp=$(cat "$tmp/
 check "run: dt_crit gershgorin $dg, certified $dc, power $dp: want gershgorin < certified, power within 1.05 of certified" \
   awk -v g="$dg" -v c="$dc" -v p="$dp" 'BEGIN { exit !(g != "" && c != "" && p != "" && g < c && p <= c * 1.0000001 && p >= c / sqrt(1.05) * 0.999999) }'
 echo "run step rules ($sr): dt_crit gershgorin $dg s, certified $dc s, power $dp s"
+# the shipped solver scenes: Gershgorin's lambda at least the certified one (>= lambda_max) and
+# at most 2 times it, i.e. (dt_certified / dt_gershgorin)^2 in [1, 2] (less 1e-5: the certified
+# lambda lies up to about 1e-5 above lambda_max, and the rod's Gershgorin bound within 1e-6 of it)
+for sc in "rod-tensile.ini --set discretization.frame=lagrangian" "gaussian-pulse.ini" \
+          "plate-hourglass-2d.ini" "plate-pulse-2d.ini" "rod-growth.ini --set material.initial_stress=0"; do
+  read -r -a a <<<"$sc"
+  a[0]=$SCENES/${a[0]}
+  for r in gershgorin certified; do
+    "$M" run "${a[@]}" --set time.end=1e-9 --set time.force=1 --step-rule $r -o "$tmp/st/s.csv" 2>"$tmp/st/err_$r"
+    grep -o 'dt_crit = [0-9.e+-]*' "$tmp/st/err_$r" | head -1 | cut -d' ' -f3 >"$tmp/st/dtc_$r"
+  done
+  dg=$(cat "$tmp/st/dtc_gershgorin"); dc=$(cat "$tmp/st/dtc_certified")
+  check "run $sc: (dt_certified $dc / dt_gershgorin $dg)^2 outside [1, 2]: $(head -c 200 "$tmp/st/err_certified")" \
+    awk -v g="$dg" -v c="$dc" 'BEGIN { r = (c / g) ^ 2; exit !(g != "" && c != "" && r >= 1 - 1e-5 && r <= 2) }'
+  echo "run $sc: lambda_gershgorin / lambda_certified = $(awk -v g="$dg" -v c="$dc" 'BEGIN { printf "%.4f", (c / g) ^ 2 }')"
+done
 run run "$sr" --set time.end=1e-6 --set time.step_rule=certified -o "$tmp/st/step_key.csv"
 check "run [time] step_rule = certified: $(head -c 200 "$err")" grep -q "(certified: .*arpack_tol 1e-08" "$err"
 run run "$sr" --set time.end=1e-6 --set time.step_rule=power --step-rule gershgorin -o "$tmp/st/step_key.csv"

@@ -312,7 +312,7 @@ static void test_energy(mfs_fix_kind fixed, const char *quad, double dtfrac, dou
         what, (last - first) / e0);
   printf("energy %s (n = %zu, lambda from %s): 1e4 steps, modified energy oscillation %.2g, "
          "physical energy oscillation %.3g (< %g), drift %.2g\n",
-         what, n, s->lambda == s->lambda_bound ? "the bound" : "1.05 power", (hmax - hmin) / h0,
+         what, n, mfs_dt_rule_name(s->step.used), (hmax - hmin) / h0,
          (emax - emin) / e0, osc_tol, (last - first) / e0);
   mfs_solver2d_free(s);
 }
