@@ -676,6 +676,64 @@ if [ -s "$tmp/tol_tight.csv" ] && [ -s "$tmp/tol_loose.csv" ]; then
   echo "eigs arpack_tol: 1e-12 $mt matvecs lambda_max $lt_l, 1e-6 $ml matvecs lambda_max $ll"
 fi
 
+# --- the step of mfstab run (issue 14 item 5): --step-rule, [time] step_rule, the header line
+# on stderr; dt_crit of the Gershgorin rule <= the certified one (both proven, Gershgorin
+# the looser) <= the power one's 1.05 safety; the CSV unchanged by the line; a fallback said
+sr=$SCENES/plate-bloch-2d.ini
+mkdir -p "$tmp/st"
+for r in gershgorin certified power; do
+  run run "$sr" --set time.end=1e-6 --step-rule $r -o "$tmp/st/step_$r.csv"
+  check "run --step-rule $r: exit $rc: $(head -c 200 "$err")" test "$rc" -eq 0
+  check "run --step-rule $r: $(nlines "$err") lines on stderr, want 1 (the step line)" test "$(nlines "$err")" -eq 1
+  check "run --step-rule $r: the step line does not name the rule: $(head -c 300 "$err")" \
+    grep -q "^mfstab run: dt = .* (${r}: " "$err"
+  grep -o 'dt_crit = [0-9.e+-]*' "$err" | head -1 | cut -d' ' -f3 >"$tmp/dtc_$r"
+  check "run --step-rule $r: header in the CSV" bash -c "head -1 '$tmp/st/step_$r.csv' | grep -q '^t_s,'"
+done
+dg=$(cat "$tmp/dtc_gershgorin"); dc=$(cat "$tmp/dtc_certified"); dp=$(cat "$tmp/dtc_power")
+check "run: dt_crit gershgorin $dg, certified $dc, power $dp: want gershgorin < certified, power within 1.05 of certified" \
+  awk -v g="$dg" -v c="$dc" -v p="$dp" 'BEGIN { exit !(g != "" && c != "" && p != "" && g < c && p <= c * 1.0000001 && p >= c / sqrt(1.05) * 0.999999) }'
+echo "run step rules ($sr): dt_crit gershgorin $dg s, certified $dc s, power $dp s"
+# the shipped solver scenes: Gershgorin's lambda at least the certified one (>= lambda_max) and
+# at most 2 times it, i.e. (dt_certified / dt_gershgorin)^2 in [1, 2] (less 1e-5: the certified
+# lambda lies up to about 1e-5 above lambda_max, and the rod's Gershgorin bound within 1e-6 of it)
+for sc in "rod-tensile.ini --set discretization.frame=lagrangian" "gaussian-pulse.ini" \
+          "plate-hourglass-2d.ini" "plate-pulse-2d.ini" "rod-growth.ini --set material.initial_stress=0"; do
+  read -r -a a <<<"$sc"
+  a[0]=$SCENES/${a[0]}
+  for r in gershgorin certified; do
+    "$M" run "${a[@]}" --set time.end=1e-9 --set time.force=1 --step-rule $r -o "$tmp/st/s.csv" 2>"$tmp/st/err_$r"
+    grep -o 'dt_crit = [0-9.e+-]*' "$tmp/st/err_$r" | head -1 | cut -d' ' -f3 >"$tmp/st/dtc_$r"
+  done
+  dg=$(cat "$tmp/st/dtc_gershgorin"); dc=$(cat "$tmp/st/dtc_certified")
+  check "run $sc: (dt_certified $dc / dt_gershgorin $dg)^2 outside [1, 2]: $(head -c 200 "$tmp/st/err_certified")" \
+    awk -v g="$dg" -v c="$dc" 'BEGIN { r = (c / g) ^ 2; exit !(g != "" && c != "" && r >= 1 - 1e-5 && r <= 2) }'
+  echo "run $sc: lambda_gershgorin / lambda_certified = $(awk -v g="$dg" -v c="$dc" 'BEGIN { printf "%.4f", (c / g) ^ 2 }')"
+done
+run run "$sr" --set time.end=1e-6 --set time.step_rule=certified -o "$tmp/st/step_key.csv"
+check "run [time] step_rule = certified: $(head -c 200 "$err")" grep -q "(certified: .*arpack_tol 1e-08" "$err"
+run run "$sr" --set time.end=1e-6 --set time.step_rule=power --step-rule gershgorin -o "$tmp/st/step_key.csv"
+check "run --step-rule over [time] step_rule: $(head -c 200 "$err")" grep -q "(gershgorin: " "$err"
+run run "$SCENES/plate-tensile-2d.ini" --set model.nodes=8 --set model.nodes_y=8 --set model.length=0.008 \
+  --set model.length_y=0.008 --set initial.mode_x=4 --set initial.pulse_center=0.004 \
+  --set initial.pulse_center_y=0.004 --set time.end=1.6e-7 -o "$tmp/st/step_fb.csv"
+check "run stressed Eulerian plate: no fallback said: $(head -c 400 "$err")" \
+  grep -q "gershgorin does not apply here (the stressed Eulerian plate.*so power$" "$err"
+bad_cmd run --step-rule "$sr" --step-rule gauss
+bad_cmd run step_rule "$sr" --set time.step_rule=gauss
+bad_cmd run step_rule "$SCENES/tsph-elastic-bar.ini" --step-rule power
+# mfstab check: lambda_max at arpack_tol 1e-8, reported, against eigs at 1e-12 on the same model
+run check --dim 2 --nodes 41,41 --perturb 0.2 --seed 3 -o "$tmp/st/check_tol.csv"
+check "check: exit $rc: $(head -c 200 "$err")" test "$rc" -eq 0
+check "check: the summary does not say the tolerance" grep -q "(ARPACK, arpack_tol 1e-08)" "$out"
+if [ -s "$tmp/st/check_tol.csv" ] && [ -s "$tmp/tol_tight.csv" ]; then
+  ct=$(col "$tmp/st/check_tol.csv" arpack_tol); cl=$(col "$tmp/st/check_tol.csv" lambda_max_per_s2)
+  check "check: arpack_tol '$ct', want 1e-8" awk -v v="$ct" 'BEGIN { exit !(v != "" && v == 1e-8) }'
+  check "check: lambda_max $cl at 1e-8 against $lt_l (eigs, 1e-12): more than 1e-10 apart" \
+    awk -v a="$cl" -v b="$lt_l" 'BEGIN { d = a / b - 1; exit !(a != "" && b != "" && d <= 1e-10 && d >= -1e-10) }'
+  echo "check arpack_tol 1e-8: lambda_max $cl, eigs at 1e-12 $lt_l"
+fi
+
 # --- units in the column names (issue 12 item 7, issue 15 item 3) ----------------
 # Every column of every command names its unit (a suffix of the table in
 # docs/commands.md, "Units of the CSV columns"), says _norm, or is in

@@ -41,9 +41,9 @@ static void test_energy(const char *quad, double S0)
     v[I] = 0.01 * sin(2.7 * (double)I) + 0.02 * cos(0.9 * (double)I);
   CHECK(mfs_solver_set_state(s, NULL, v) == MFS_OK, "set_state");
   free(v);
-  /* the leapfrog (shadow-)energy oscillation is O((omega dt)^2); dt_crit is
-   * within 5% of the true limit 2/omega_max, and at 0.15 of it the oscillation
-   * stays below 2% (about 4% at a quarter) */
+  /* the leapfrog (shadow-)energy oscillation is O((omega dt)^2); dt_crit (the
+   * Gershgorin rule) is at most the true limit 2/omega_max, and at 0.15 of it
+   * the oscillation stays below 2% (about 4% at a quarter of the limit) */
   mfs_solver_set_dt(s, 0.15 * s->dt_crit, 0);
   double k, p;
   mfs_solver_energy(s, &k, &p);
@@ -141,6 +141,7 @@ static void test_dt(void)
   /* exact limit: with the power estimate alone (mls, equal to lambda_max) */
   sp = base();
   s = mfs_solver_alloc(&sp, &st, NULL);
+  CHECK(s && mfs_solver_choose_step(s, MFS_DT_POWER) == MFS_OK, "power rule");
   double lam = s->lambda_power, dtc = 2.0 / sqrt(lam);
   double *u = calloc(s->n, sizeof *u);
   for (int pass = 0; pass < 2; pass++) {
@@ -239,6 +240,91 @@ static void test_eulerian_rigid(void)
   mfs_solver_free(s);
 }
 
+/* The step rules on the rod's scenes: the Gershgorin bound of K(Cbar) is at
+ * least lambda_max and at most twice it; lambda_max by two independent paths
+ * agrees (the ARPACK value of the assembled K(Cbar) of the certified rule and
+ * the power iteration on finite differences of the nonlinear force, which
+ * shows K(Cbar) is the force's linearization); the certificate lies above
+ * both, within 1e-5; a leapfrog run at the default step (0.9 of the Gershgorin
+ * dt_crit) keeps its energy bounded.  The Eulerian rod with S0 != 0 falls
+ * back to the power rule and says so. */
+static void test_rules(const char *what, int euler, const char *quad, double S0, int free_ends)
+{
+  mfs_solver_spec sp = base();
+  sp.disc.source.nx = 41;
+  sp.disc.quadrature = mfs_quad_find(quad);
+  sp.disc.material.initial_stress = S0;
+  if (euler)
+    sp.disc.frame = MFS_FRAME_EULERIAN;
+  if (free_ends)
+    sp.bc[0] = sp.bc[1] = MFS_BC_FREE;
+  mfs_status st;
+  mfs_solver *s = mfs_solver_alloc(&sp, &st, NULL);
+  CHECK(s != NULL, "%s: alloc: %s", what, mfs_strerror(st));
+  if (!s)
+    return;
+  mfs_dt_info g = s->step;
+  if (euler && S0 != 0.0) {
+    CHECK(g.used == MFS_DT_POWER && g.fallback && !g.proven && g.power_iterations == 300,
+          "%s: Gershgorin does not apply: used %s, fallback %s", what, mfs_dt_rule_name(g.used),
+          g.fallback ? g.fallback : "(none)");
+    CHECK(mfs_solver_choose_step(s, MFS_DT_CERTIFIED) == MFS_OK && s->step.used == MFS_DT_POWER &&
+              s->step.fallback,
+          "%s: certified falls back to power", what);
+    printf("%s: fallback to power: %s\n", what, g.fallback ? g.fallback : "");
+    mfs_solver_free(s);
+    return;
+  }
+  CHECK(g.used == MFS_DT_GERSHGORIN && g.proven && !g.fallback && g.power_iterations == 0,
+        "%s: default rule %s (power iterations %d)", what, mfs_dt_rule_name(g.used),
+        g.power_iterations);
+  CHECK_NEAR(s->dt_crit, 2.0 / sqrt(g.lambda_gershgorin), 1e-15 * s->dt_crit, "%s: dt_crit", what);
+  double dt0 = s->dt;
+  CHECK(mfs_solver_choose_step(s, MFS_DT_POWER) == MFS_OK, "%s: power", what);
+  double lp = s->step.lambda_power;
+  CHECK(mfs_solver_choose_step(s, MFS_DT_CERTIFIED) == MFS_OK && s->step.used == MFS_DT_CERTIFIED,
+        "%s: certified used %s", what, mfs_dt_rule_name(s->step.used));
+  double la = s->step.lambda_arpack, lc = s->step.lambda_certified;
+  CHECK(lp <= la * (1 + 1e-6) && lp >= la * (1 - 1e-3),
+        "%s: power (force differences, from below) %.10g vs ARPACK (K(Cbar)) %.10g", what, lp, la);
+  CHECK(lc >= la * (1 - 1e-12) && lc <= la * (1 + 1e-5), "%s: certified / ARPACK - 1 = %.3g", what,
+        lc / la - 1.0);
+  double rg = g.lambda_gershgorin / la;
+  CHECK(rg >= 1.0 - 1e-12 && rg <= 2.0, "%s: Gershgorin / lambda_max = %.6f outside [1, 2]", what, rg);
+  CHECK(s->step.arpack_tol == MFS_DT_ARPACK_TOL, "%s: tolerance reported %g", what,
+        s->step.arpack_tol);
+  int nfact = s->step.factorizations;
+  /* back to the default step: a leapfrog run keeps its energy bounded (the
+   * physical energy of the leapfrog oscillates by O((omega dt)^2): its
+   * range over the second half of the run is no larger than over the first) */
+  CHECK(mfs_solver_choose_step(s, MFS_DT_GERSHGORIN) == MFS_OK && s->dt == dt0, "%s: back", what);
+  double *v = calloc(s->n, sizeof *v);
+  for (size_t I = 0; I < s->n; I++)
+    v[I] = 1e-3 * (sin(2.7 * (double)I) + 2.0 * cos(0.9 * (double)I));
+  CHECK(mfs_solver_set_state(s, NULL, v) == MFS_OK, "%s: set_state", what);
+  free(v);
+  double k, p;
+  mfs_solver_energy(s, &k, &p);
+  const long nst = 20000;
+  double e0 = k + p, osc[2] = {0.0, 0.0};
+  for (long i = 0; i < nst && st == MFS_OK; i++) {
+    st = mfs_solver_step(s, MFS_SCHEME_LEAPFROG);
+    if (i % 10 == 9) {
+      mfs_solver_energy(s, &k, &p);
+      double d = fabs(k + p - e0) / e0;
+      osc[2 * i >= nst] = fmax(osc[2 * i >= nst], isfinite(d) ? d : INFINITY);
+    }
+  }
+  CHECK(st == MFS_OK, "%s: run: %s", what, mfs_strerror(st));
+  CHECK(osc[1] <= 1.1 * osc[0], "%s: energy range at the default step grows: %.3g then %.3g of E0",
+        what, osc[0], osc[1]);
+  printf("%s: lambda_max %.8g (power %.8g), Gershgorin / lambda_max %.4f, certified / lambda_max "
+         "- 1 = %.2g (%d factorizations); 2e4 leapfrog steps at 0.9 of the Gershgorin dt_crit: "
+         "max |E - E0| / E0 %.3g (first half), %.3g (second half)\n",
+         what, la, lp, rg, lc / la - 1.0, nfact, osc[0], osc[1]);
+  mfs_solver_free(s);
+}
+
 static void test_errors(void)
 {
   mfs_status st;
@@ -261,6 +347,13 @@ static void test_errors(void)
   mfs_scheme sc;
   CHECK(mfs_scheme_parse("rk3", &sc) == MFS_EINVAL, "unknown scheme");
   CHECK(mfs_scheme_parse("rk4", &sc) == MFS_OK && sc == MFS_SCHEME_RK4, "rk4 parsed");
+  mfs_dt_rule r;
+  CHECK(mfs_dt_rule_parse("gauss", &r) == MFS_EINVAL, "unknown step rule");
+  CHECK(mfs_dt_rule_parse("certified", &r) == MFS_OK && r == MFS_DT_CERTIFIED, "rule parsed");
+  sp = base();
+  mfs_solver *s = mfs_solver_alloc(&sp, &st, NULL);
+  CHECK(s && mfs_solver_choose_step(s, (mfs_dt_rule)7) == MFS_EINVAL, "rule 7 refused");
+  mfs_solver_free(s);
   mfs_solver_free(NULL);
 }
 
@@ -273,6 +366,11 @@ int main(void)
   test_dt();
   test_orders();
   test_eulerian_rigid();
+  test_rules("rod lagrangian nodal", 0, "nodal", 0.0, 0);
+  test_rules("rod lagrangian gauss2 S0 = 0.8 free", 0, "gauss2", 0.8, 1);
+  test_rules("rod lagrangian stress S0 = -0.9", 0, "stress", -0.9, 0);
+  test_rules("rod eulerian nodal", 1, "nodal", 0.0, 0);
+  test_rules("rod eulerian nodal S0 = 0.29", 1, "nodal", 0.29, 0);
   test_errors();
   return check_summary("test_solver");
 }

@@ -312,7 +312,7 @@ static void test_energy(mfs_fix_kind fixed, const char *quad, double dtfrac, dou
         what, (last - first) / e0);
   printf("energy %s (n = %zu, lambda from %s): 1e4 steps, modified energy oscillation %.2g, "
          "physical energy oscillation %.3g (< %g), drift %.2g\n",
-         what, n, s->lambda == s->lambda_bound ? "the bound" : "1.05 power", (hmax - hmin) / h0,
+         what, n, mfs_dt_rule_name(s->step.used), (hmax - hmin) / h0,
          (emax - emin) / e0, osc_tol, (last - first) / e0);
   mfs_solver2d_free(s);
 }
@@ -336,7 +336,28 @@ static void test_dt(mfs_physics_kind phys, const char *quad)
   double lmax = wd[n - 1], dt_exact = 2.0 / sqrt(lmax);
   CHECK(mfs_eig_max(&P, NULL, &lam_top, top, NULL) == MFS_OK, "%s: eig_max", what);
   CHECK_NEAR(lam_top / lmax, 1.0, 1e-10, "%s: ARPACK vs dense lambda_max", what);
-  /* safe, and within the 1.05 safety */
+  /* the default rule: the Gershgorin bound, proven, above lambda_max and at most 2 times it */
+  const mfs_dt_info *g = &s->step;
+  double rg = g->lambda_gershgorin / lmax;
+  CHECK(g->used == MFS_DT_GERSHGORIN && g->proven && !g->fallback, "%s: default rule %s", what,
+        mfs_dt_rule_name(g->used));
+  CHECK(rg >= 1.0 - 1e-12 && rg <= 2.0, "%s: Gershgorin / lambda_max = %.6f outside [1, 2]", what,
+        rg);
+  CHECK_NEAR(s->dt_crit, 2.0 / sqrt(g->lambda_gershgorin), 1e-15 * s->dt_crit, "%s: dt_crit", what);
+  /* certified: proven and within 1e-5 of lambda_max; its ARPACK estimate at
+   * MFS_DT_ARPACK_TOL against the dense value (the stopping rule of the step) */
+  CHECK(mfs_solver2d_choose_step(s, MFS_DT_CERTIFIED) == MFS_OK, "%s: certified", what);
+  double rc = s->step.lambda_certified / lmax, ea = fabs(s->step.lambda_arpack / lmax - 1.0);
+  CHECK(s->step.used == MFS_DT_CERTIFIED && s->step.proven, "%s: certified used %s", what,
+        mfs_dt_rule_name(s->step.used));
+  CHECK(rc >= 1.0 - 1e-12 && rc <= 1.0 + 1e-5, "%s: certified / lambda_max - 1 = %.3g", what,
+        rc - 1.0);
+  CHECK(ea <= 1e-8, "%s: ARPACK at tol %g: relative error %.3g", what, s->step.arpack_tol, ea);
+  printf("%s: Gershgorin / lambda_max %.4f, certified / lambda_max - 1 = %.2g (%d factorizations), "
+         "ARPACK at tol %g: relative error %.2g\n",
+         what, rg, rc - 1.0, s->step.factorizations, s->step.arpack_tol, ea);
+  /* the power rule (kept for comparison): safe, and within the 1.05 safety */
+  CHECK(mfs_solver2d_choose_step(s, MFS_DT_POWER) == MFS_OK, "%s: power", what);
   CHECK(s->lambda_power <= lmax * (1 + 1e-12), "%s: power estimate %.10g above lambda_max %.10g",
         what, s->lambda_power, lmax);
   CHECK(s->dt_crit <= dt_exact, "%s: dt_crit %.8g above the limit %.8g", what, s->dt_crit,

@@ -358,9 +358,85 @@ static void errors(void)
   CHECK(!mfs_solver2d_alloc_stressed(&sp, NULL, -1.0, &st, NULL) && st == MFS_EINVAL, "skin < 0");
 }
 
+/* ---- the step rules on the stressed plate ---- */
+
+/* Lagrangian kernel: the Gershgorin bound of the tangent stiffness (the
+ * default rule) lies above lambda_max of the linearized operator and within 2
+ * times it, lambda_max by the Bloch symbol on the box's wave vectors (the
+ * periodic box's exact spectrum, the independent path); `certified` falls
+ * back to Gershgorin (no assembled tangent) and says so.  Eulerian kernel
+ * with stress: the power rule, said in the fallback. */
+static void step_rules(void)
+{
+  typedef struct {
+    const char *quad;
+    const mfs_shape_type *sh;
+    mfs_frame fr;
+  } rcase;
+  const rcase cases[] = {
+    {"stress-tri", &mfs_shape_mls, MFS_FRAME_LAGRANGIAN},
+    {"gauss2", &mfs_shape_kb, MFS_FRAME_LAGRANGIAN},
+    {"nodal", &mfs_shape_mls, MFS_FRAME_LAGRANGIAN},
+    {"nodal", &mfs_shape_mls, MFS_FRAME_EULERIAN},
+  };
+  const double sig[3] = {0.31 * MU, -0.17 * MU, 0.11 * MU};
+  const int N = 12;
+  for (size_t c = 0; c < sizeof cases / sizeof cases[0]; c++) {
+    mfs_model_spec sp = spec(N, cases[c].quad, cases[c].sh, cases[c].fr);
+    mfs_status st;
+    mfs_solver2d *s = mfs_solver2d_alloc_stressed(&sp, sig, 0.0, &st, NULL);
+    CHECK(s != NULL, "rules alloc %s: %s", cases[c].quad, mfs_strerror(st));
+    if (!s)
+      continue;
+    const mfs_dt_info g = s->step;
+    if (cases[c].fr != MFS_FRAME_LAGRANGIAN) {
+      CHECK(g.used == MFS_DT_POWER && g.fallback && !g.proven, "eulerian %s: used %s, fallback %s",
+            cases[c].quad, mfs_dt_rule_name(g.used), g.fallback ? g.fallback : "(none)");
+      printf("step rules eulerian %s %s: %s\n", cases[c].sh->name, cases[c].quad,
+             g.fallback ? g.fallback : "");
+      mfs_solver2d_free(s);
+      continue;
+    }
+    mfs_disp_plan *pl = disp(&sp, cases[c].fr, sig[0], sig[1], sig[2]);
+    if (!pl) {
+      mfs_solver2d_free(s);
+      continue;
+    }
+    double dx = s->model->dx, scale = MU / (RHO * dx * dx), lmax = 0.0;
+    for (int a = 0; a < N; a++)
+      for (int b = 0; b < N; b++) {
+        double k[2] = {2 * M_PI * a / N, 2 * M_PI * b / N};
+        double complex K[4], M[4];
+        mfs_disp_symbols(pl, sig[0] / MU, k, K, M);
+        double p = 0.5 * creal(K[0] + K[3]), q = 0.5 * creal(K[0] - K[3]);
+        double top = p + sqrt(q * q + creal(K[1] * conj(K[1])));
+        double bot = p - sqrt(q * q + creal(K[1] * conj(K[1])));
+        lmax = fmax(lmax, fmax(fabs(top), fabs(bot)) / creal(M[0]) * scale);
+      }
+    double r = g.lambda_gershgorin / lmax;
+    CHECK(g.used == MFS_DT_GERSHGORIN && g.proven && !g.fallback, "%s %s: default rule %s",
+          cases[c].sh->name, cases[c].quad, mfs_dt_rule_name(g.used));
+    CHECK(r >= 1.0 - 1e-12 && r <= 2.0, "%s %s: Gershgorin / lambda_max (symbol) = %.6f outside [1, 2]",
+          cases[c].sh->name, cases[c].quad, r);
+    double lold = (1.0 + (0.5 * fabs(sig[0] + sig[1]) + hypot(0.5 * (sig[0] - sig[1]), sig[2])) / MU);
+    CHECK(mfs_solver2d_choose_step(s, MFS_DT_CERTIFIED) == MFS_OK &&
+              s->step.used == MFS_DT_GERSHGORIN && s->step.fallback,
+          "%s %s: certified falls back to Gershgorin", cases[c].sh->name, cases[c].quad);
+    CHECK(mfs_solver2d_choose_step(s, MFS_DT_POWER) == MFS_OK && s->step.used == MFS_DT_POWER,
+          "%s %s: power", cases[c].sh->name, cases[c].quad);
+    printf("step rules lagrangian %s %s: lambda_max (symbol) %.8g, Gershgorin %.8g (ratio %.4f), "
+           "power rule (unstressed 1.05 power x %.4f) %.8g (ratio %.4f)\n",
+           cases[c].sh->name, cases[c].quad, lmax, g.lambda_gershgorin, r, lold, s->step.lambda,
+           s->step.lambda / lmax);
+    mfs_disp_plan_free(pl);
+    mfs_solver2d_free(s);
+  }
+}
+
 int main(void)
 {
   linearization();
+  step_rules();
   growth();
   unstressed();
   errors();

@@ -47,7 +47,8 @@ static const char about_1d[] =
   "  [time]           end* (s), dt (s) or safety (0.9: dt = safety * dt_crit), scheme\n"
   "                   (leapfrog | euler | rk2 | rk4), force (0: a dt above the central-\n"
   "                   difference limit 2/sqrt(lambda_max) is refused), max_steps (10^8: a\n"
-  "                   longer run is refused)\n"
+  "                   longer run is refused), step_rule (gershgorin | certified | power: the\n"
+  "                   rule of dt_crit; --step-rule overrides it)\n"
   "  [output]         probes* (v_center, u_center, kinetic_energy, potential_energy,\n"
   "                   total_energy, sigma_end, sigma_center, mode_amp, max_v, v_mid, v_err), every (1),\n"
   "                   mode (1: kappa dX/pi of mode_amp = (2/n) |sum_I u_I exp(-i kappa X_I)|)\n";
@@ -283,6 +284,11 @@ mfs_integrator scene_build(scene *sc)
  * times it. */
 static void choose_dt(const scene *sc, mfs_integrator *in)
 {
+  if (in->type->choose_step && sc->step_rule != MFS_DT_GERSHGORIN) { /* alloc chose by Gershgorin */
+    mfs_status st = in->type->choose_step(in->solver, sc->step_rule);
+    if (st != MFS_OK)
+      die_run(sc, in->type, st, 0, 0.0);
+  }
   double dts = in->type->stable_dt(in->solver);
   const char *rule = in->type->step_rule;
   char why[96];
@@ -307,6 +313,55 @@ static void choose_dt(const scene *sc, mfs_integrator *in)
   } else if (in->type->set_dt(in->solver, sc->safety * dts, 1) != MFS_OK) {
     die_run(sc, in->type, MFS_EINVAL, 0, 0.0);
   }
+}
+
+/* The run's header: one line on stderr with the step, the rule that chose
+ * its limit and what that rule guarantees (docs/commands.md, "mfstab run"). */
+static void step_line(const scene *sc, const mfs_integrator *in, double dt)
+{
+  double dtc = in->type->stable_dt(in->solver);
+  char head[160];
+  if (sc->have_dt)
+    snprintf(head, sizeof head, "mfstab run: dt = %.6g s ([time] dt; %.4f of dt_crit = %.6g s)", dt,
+             dt / dtc, dtc);
+  else
+    snprintf(head, sizeof head, "mfstab run: dt = %.6g s = %g of dt_crit = %.6g s", dt, sc->safety,
+             dtc);
+  if (!in->type->step_info) {
+    fprintf(stderr, "%s (the von Neumann limit of %s, lib/time/mfs_tsph.h)\n", head,
+            mfs_tsph_scheme_name(sc->tscheme));
+    return;
+  }
+  const mfs_dt_info *i = in->type->step_info(in->solver);
+  char rule[400];
+  if (i->used == MFS_DT_GERSHGORIN)
+    snprintf(rule, sizeof rule,
+             "gershgorin: lambda = max_i sum_j |K_ij|/m_i = %.6g 1/s^2, a proven upper bound of "
+             "lambda_max of the linearized model at the initial state",
+             i->lambda);
+  else if (i->used == MFS_DT_CERTIFIED)
+    snprintf(rule, sizeof rule,
+             "certified: sigma M - K positive definite, lambda_max <= %.6g 1/s^2 (proven; from "
+             "an ARPACK estimate %.10g 1/s^2 at arpack_tol %g, %d factorizations)",
+             i->lambda, i->lambda_arpack, i->arpack_tol, i->factorizations);
+  else if (i->proven)
+    snprintf(rule, sizeof rule,
+             "power: the element bound lambda = %.6g 1/s^2 (eq. 132, proven), below 1.05 times "
+             "the power-iteration estimate %.6g 1/s^2",
+             i->lambda, i->lambda_power);
+  else
+    snprintf(rule, sizeof rule,
+             "power: lambda = %.6g 1/s^2 from %d power iterations (estimate %.6g 1/s^2, from "
+             "below, times 1.05%s): not proven",
+             i->lambda, i->power_iterations, i->lambda_power,
+             sc->dim == 2 && i->lambda != mfs_step_lambda(i->lambda_power, NAN, 1)
+                 ? " and 1 + |sigma0|/mu"
+                 : "");
+  fprintf(stderr, "%s (%s)", head, rule);
+  if (i->fallback)
+    fprintf(stderr, "; %s does not apply here (%s), so %s", mfs_dt_rule_name(i->requested),
+            i->fallback, mfs_dt_rule_name(i->used));
+  fputc('\n', stderr);
 }
 
 /* The initial state: random perturbation (1D), Bloch mode (2D), velocity
@@ -373,7 +428,12 @@ typedef struct {
   const char *scene;
   cli_texts sets;
   const char *out;
+  int step_rule;
 } run_opts;
+
+static const char *const step_rule_names[] = {
+  [MFS_DT_GERSHGORIN] = "gershgorin", [MFS_DT_CERTIFIED] = "certified", [MFS_DT_POWER] = "power",
+  NULL};
 
 static const cli_opt opts[] = {
   {.name = NULL, .type = CLI_TEXT, .arg = "SCENE.ini", .offset = offsetof(run_opts, scene)},
@@ -381,6 +441,12 @@ static const cli_opt opts[] = {
    .help = "override a key of the scene (repeatable)", .offset = offsetof(run_opts, sets)},
   {.name = "-o", .type = CLI_TEXT, .arg = "FILE", .help = "output file (default: standard output)",
    .offset = offsetof(run_opts, out)},
+  {.name = "--step-rule", .type = CLI_CHOICE, .arg = "gershgorin|certified|power",
+   .help = "the rule of the stable step dt_crit (default gershgorin, or the scene's [time]\n"
+           "step_rule): gershgorin max_i sum_j |K_ij|/m_i (proven, one pass over the\n"
+           "nonzeros); certified: sigma M - K factored (proven, within 1e-6 of lambda_max);\n"
+           "power: 300 power iterations times 1.05 (not proven; the rule before 0.6)",
+   .offset = offsetof(run_opts, step_rule), .choices = step_rule_names},
   {.type = CLI_END}};
 
 scene_result scene_run(scene *sc, int write_csv, const char *csv_path, scene_row_fn row, void *ctx,
@@ -439,6 +505,8 @@ scene_result scene_run(scene *sc, int write_csv, const char *csv_path, scene_row
                     steps, s.dt, sc->max_steps);
   }
   long nsteps = (long)steps;
+  if (sc->print_step)
+    step_line(sc, &in, s.dt);
   if (write_csv) {
     cli_out_open(&out, csv_path);
     csv = out.f;
@@ -511,7 +579,7 @@ int cmd_run(int argc, char **argv)
 {
   static run_opts o; /* static: the texts table is large */
   memset(&o, 0, sizeof o);
-  unsigned char seen[4];
+  unsigned char seen[5];
   cli_group g = {opts, &o, seen};
   static char about[sizeof about_1d + sizeof about_2d];
   snprintf(about, sizeof about, "%s%s", about_1d, about_2d);
@@ -522,7 +590,13 @@ int cmd_run(int argc, char **argv)
   scene_load(&sc, o.scene);
   for (int i = 0; i < o.sets.n; i++)
     scene_set(&sc, o.sets.v[i]);
+  if (seen[3]) {
+    char set[64];
+    snprintf(set, sizeof set, "time.step_rule=%s", step_rule_names[o.step_rule]);
+    scene_set(&sc, set);
+  }
   scene_finish(&sc);
+  sc.print_step = 1;
   scene_run(&sc, 1, o.out, NULL, NULL, 0);
   return 0;
 }

@@ -130,7 +130,10 @@ void model_run(const model_cmd *c, const run_opts *o, run_result *r)
     if (!r->vmax)
       cli_die(1, "out of memory");
   }
-  st = mfs_eig_max(&P, &eo, &r->lambda, r->vmax, &info);
+  mfs_eig_opts emax = eo;
+  if (o->lambda_tol > 0.0)
+    emax.tol = o->lambda_tol;
+  st = mfs_eig_max(&P, &emax, &r->lambda, r->vmax, &info);
   if (st != MFS_OK)
     die_eig(st, &info, "lambda_max");
   run_take_lambda(r, &info);
@@ -162,7 +165,7 @@ void model_run(const model_cmd *c, const run_opts *o, run_result *r)
   }
   if (o->certify) {
     /* from the Lanczos value: it lies below lambda_max by about the ARPACK tolerance */
-    double tol = o->arpack_tol > 0.0 ? o->arpack_tol : 1e-15;
+    double tol = o->lambda_tol > 0.0 ? o->lambda_tol : o->arpack_tol > 0.0 ? o->arpack_tol : 1e-15;
     double *x = mfs_model_coords(m); /* the factorization ordered by the particles' positions */
     if (!x)
       cli_die(1, "certification: out of memory");

@@ -13,6 +13,7 @@ typedef struct {
   double tol;           /* their threshold relative to lambda_max */
   long nev, ncv, maxiter;
   double arpack_tol;
+  double lambda_tol;    /* ARPACK's tolerance of lambda_max alone (0: arpack_tol) */
   int certify;          /* dt_certified */
   int keep;             /* keep the model and the modes (write-modes, check) */
   int distributed;      /* over the MPI ranks (tools/par.h, model_prun.c): no model kept */

@@ -29,7 +29,7 @@ typedef enum {
   /* [initial] */ CENTER_VELOCITY, PERTURBATION, SEED, PULSE_AMPLITUDE, PULSE_ALPHA, PULSE_CENTER,
   PULSE_CENTER_Y, MODE_X, MODE_Y, MODE_AMPLITUDE, COMPONENT,
   /* [boundary] */ LEFT, RIGHT, LEFT_VELOCITY, RIGHT_VELOCITY, LEFT_UNTIL, RIGHT_UNTIL, EDGES,
-  /* [time] */ END, DT, SAFETY, SCHEME, FORCE, MAX_STEPS,
+  /* [time] */ END, DT, SAFETY, SCHEME, FORCE, MAX_STEPS, STEP_RULE,
   /* [output] */ PROBES, EVERY, MODE,
   NKEYS
 } key_id;
@@ -95,6 +95,7 @@ static const key_def keys[NKEYS] = {
   [SCHEME] = {"time", "scheme", K_WORD, 0},
   [FORCE] = {"time", "force", K_BOOL, 0},
   [MAX_STEPS] = {"time", "max_steps", K_INT, 0},
+  [STEP_RULE] = {"time", "step_rule", K_WORD, 0},
   [PROBES] = {"output", "probes", K_WORD, 1},
   [EVERY] = {"output", "every", K_INT, 0},
   [MODE] = {"output", "mode", K_POS, 0},
@@ -357,6 +358,11 @@ static void set_key(scene *sc, int line, key_id id, const char *value)
       key_error(sc, line, k->section, k->name, value, "allowed: leapfrog, euler, rk2, rk4, tsph");
     break;
   case FORCE: sc->force = (int)l; break;
+  case STEP_RULE:
+    if (mfs_dt_rule_parse(value, &sc->step_rule) != MFS_OK)
+      key_error(sc, line, k->section, k->name, value, "allowed: gershgorin, certified, power");
+    sc->have_step_rule = 1;
+    break;
   case MAX_STEPS:
     if (l < 1 || l > 1000000000000L)
       key_error(sc, line, k->section, k->name, value, "allowed 1 to 1000000000000");
@@ -748,7 +754,7 @@ void scene_finish(scene *sc)
   }
   /* stress-velocity bar (TSPH, lib/time/mfs_tsph.h) */
   static const int unused[] = {PERIODIC, INITIAL_STRESS, SHAPE, FRAME, QUADRATURE, EQUILIBRATE,
-                               SKIN, PERTURBATION, SEED};
+                               SKIN, PERTURBATION, SEED, STEP_RULE};
   for (int i = 0; i < (int)(sizeof unused / sizeof unused[0]); i++)
     if (values[unused[i]][0])
       scene_key_error(sc, keys[unused[i]].section, keys[unused[i]].name,

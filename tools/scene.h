@@ -53,6 +53,9 @@ typedef struct {
   long max_steps;          /* refuse a run of more steps (default 10^8) */
   double max_entries;      /* refuse a plan of more neighbour entries ([model] max_entries) */
   mfs_scheme scheme;
+  mfs_dt_rule step_rule;   /* [time] step_rule (gershgorin | certified | power) */
+  int have_step_rule;
+  int print_step;          /* mfstab run: the step line on stderr */
   int tsph;                /* scheme = tsph given */
   mfs_tsph_scheme tscheme; /* stress_velocity: tsph | euler | rk2 | rk4 */
   /* [output] */

@@ -101,3 +101,51 @@ mfs_status mfs_scheme_parse(const char *name, mfs_scheme *s)
     }
   return MFS_EINVAL;
 }
+
+static const char *const dt_rule_names[3] = {
+  [MFS_DT_GERSHGORIN] = "gershgorin", [MFS_DT_CERTIFIED] = "certified",
+  [MFS_DT_POWER] = "power"};
+
+const char *mfs_dt_rule_name(mfs_dt_rule r)
+{
+  return (unsigned)r < 3 ? dt_rule_names[r] : "?";
+}
+
+mfs_status mfs_dt_rule_parse(const char *name, mfs_dt_rule *r)
+{
+  for (int i = 0; name && i < 3; i++)
+    if (strcmp(name, dt_rule_names[i]) == 0) {
+      *r = (mfs_dt_rule)i;
+      return MFS_OK;
+    }
+  return MFS_EINVAL;
+}
+
+mfs_dt_info mfs_dt_info_init(mfs_dt_rule r)
+{
+  return (mfs_dt_info){.requested = r, .used = r, .lambda = NAN, .lambda_gershgorin = NAN,
+                         .lambda_certified = NAN, .lambda_power = NAN, .lambda_arpack = NAN};
+}
+
+mfs_status mfs_dt_certify(const mfs_pencil *P, mfs_dt_info *info)
+{
+  mfs_eig_opts eo = {.tol = MFS_DT_ARPACK_TOL};
+  mfs_eig_info ei;
+  double lam = NAN;
+  info->arpack_tol = MFS_DT_ARPACK_TOL;
+  mfs_status st = mfs_eig_max(P, &eo, &lam, NULL, &ei);
+  if (st != MFS_OK)
+    return st;
+  info->lambda_arpack = lam;
+  if (!(lam > 0.0) || !isfinite(lam))
+    return MFS_EDOMAIN;
+  mfs_certify_opts co = {.lambda_est = lam};
+  mfs_certify_result cr;
+  if ((st = mfs_eig_certify_search(P, &co, &cr)) != MFS_OK)
+    return st;
+  info->factorizations = cr.factorizations;
+  if (!cr.ok)
+    return MFS_EDOMAIN;
+  info->lambda_certified = cr.lambda_upper;
+  return MFS_OK;
+}

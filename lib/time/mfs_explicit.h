@@ -11,6 +11,7 @@
 #include <math.h>
 #include <stddef.h>
 
+#include "mfs_eigen.h"
 #include "mfs_status.h"
 
 #ifdef __cplusplus
@@ -55,6 +56,64 @@ static inline mfs_status mfs_explicit_set_dt(double *dt, double value, double dt
   *dt = value;
   return MFS_OK;
 }
+
+/* The rule that chooses the stable step dt_crit = 2 / sqrt(lambda) of the
+ * central difference (eq. 120 with xi = 0) from the solver's linearized
+ * operator at its initial state (u = 0; M^-1 K, lumped mass):
+ *   MFS_DT_GERSHGORIN  lambda = max_i sum_j |K_ij| / m_i (mfs_bound.h): a
+ *                        proven upper bound of every |eigenvalue|, one pass
+ *                        over the nonzeros; needs every m_i > 0;
+ *   MFS_DT_CERTIFIED   lambda = sigma (1 + margin) of a Cholesky
+ *                        factorization of sigma M - K (mfs_eig_certify_search,
+ *                        from an ARPACK estimate at relative tolerance
+ *                        MFS_DT_ARPACK_TOL): proven, within about 1e-6 of
+ *                        lambda_max, one ARPACK run and a few factorizations;
+ *   MFS_DT_POWER       the rule before these (mfs_step_lambda): 1.05 times
+ *                        300 power iterations (from below; not proven), or
+ *                        the element bound where it is proven and smaller.
+ * Where the requested rule does not apply, the solver says so in
+ * mfs_dt_info.fallback and uses the next one that does (the order
+ * certified -> gershgorin -> power), never silently. */
+typedef enum { MFS_DT_GERSHGORIN, MFS_DT_CERTIFIED, MFS_DT_POWER } mfs_dt_rule;
+
+/* "gershgorin", "certified", "power"; parse: MFS_EINVAL if unknown. */
+const char *mfs_dt_rule_name(mfs_dt_rule r);
+mfs_status mfs_dt_rule_parse(const char *name, mfs_dt_rule *r);
+
+/* ARPACK's relative tolerance of the estimate the certified step starts
+ * from: the step needs lambda_max to about 1e-6 (the certificate then moves
+ * sigma up by relative gaps from 1e-6), and for a symmetric problem the
+ * Ritz value's error is of the order of the squared residual, far below the
+ * tolerance (measured: tests/test_solver2d.c). */
+#define MFS_DT_ARPACK_TOL 1e-8
+
+/* What the solver's step rule found (all lambda in 1/s^2; NAN: not computed
+ * or not applicable). */
+typedef struct {
+  mfs_dt_rule requested, used;
+  double lambda;            /* the value dt_crit = 2 / sqrt(lambda) uses */
+  int proven;               /* lambda is a proven upper bound of lambda_max of the
+                               linearized model at the initial state */
+  double lambda_gershgorin; /* max_i sum_j |K_ij| / m_i */
+  double lambda_certified;  /* sigma (1 + margin) of the certificate */
+  double lambda_power;      /* the power-iteration estimate (before the 1.05) */
+  double lambda_arpack;     /* the ARPACK estimate the certificate started from */
+  double arpack_tol;        /* its tolerance (0: no ARPACK run) */
+  int factorizations;       /* of the certificate */
+  int power_iterations;     /* 0: none run */
+  const char *fallback;     /* why the requested rule did not apply (static text), or NULL */
+} mfs_dt_info;
+
+/* The certified step of the pencil (K, lumped m > 0): an ARPACK estimate at
+ * MFS_DT_ARPACK_TOL (info->lambda_arpack, arpack_tol), then
+ * mfs_eig_certify_search from it (info->lambda_certified = sigma (1 +
+ * margin), factorizations).  MFS_OK with lambda_certified finite; MFS_EDOMAIN
+ * (no sigma certified, or no positive estimate); MFS_ENOMEM; other statuses of
+ * mfs_eig_max (the caller falls back to another rule). */
+mfs_status mfs_dt_certify(const mfs_pencil *P, mfs_dt_info *info);
+
+/* An mfs_dt_info with nothing computed for rule r. */
+mfs_dt_info mfs_dt_info_init(mfs_dt_rule r);
 
 /* a = a(u); MFS_OK or the caller's error status. */
 typedef int (*mfs_accel_fn)(void *ctx, const double *u, double *a);

@@ -19,6 +19,16 @@ static mfs_status rod_set_dt(void *s, double dt, int force)
   return mfs_solver_set_dt(s, dt, force);
 }
 
+static mfs_status rod_choose_step(void *s, mfs_dt_rule rule)
+{
+  return mfs_solver_choose_step(s, rule);
+}
+
+static const mfs_dt_info *rod_step_info(const void *s)
+{
+  return &((const mfs_solver *)s)->step;
+}
+
 static mfs_status rod_step(void *s, mfs_scheme scheme)
 {
   return mfs_solver_step(s, scheme);
@@ -69,6 +79,8 @@ const mfs_integrator_type mfs_integrator_rod = {.name = "rod",
                                                 .set_state = rod_set_state,
                                                 .stable_dt = rod_stable_dt,
                                                 .set_dt = rod_set_dt,
+                                                .choose_step = rod_choose_step,
+                                                .step_info = rod_step_info,
                                                 .step = rod_step,
                                                 .fields = rod_fields,
                                                 .energy = rod_energy,
@@ -91,6 +103,16 @@ static double plate_stable_dt(void *s)
 static mfs_status plate_set_dt(void *s, double dt, int force)
 {
   return mfs_solver2d_set_dt(s, dt, force);
+}
+
+static mfs_status plate_choose_step(void *s, mfs_dt_rule rule)
+{
+  return mfs_solver2d_choose_step(s, rule);
+}
+
+static const mfs_dt_info *plate_step_info(const void *s)
+{
+  return &((const mfs_solver2d *)s)->step;
 }
 
 static mfs_status plate_step(void *s, mfs_scheme scheme)
@@ -137,6 +159,8 @@ const mfs_integrator_type mfs_integrator_plate = {.name = "plate",
                                                   .set_state = plate_set_state,
                                                   .stable_dt = plate_stable_dt,
                                                   .set_dt = plate_set_dt,
+                                                  .choose_step = plate_choose_step,
+                                                  .step_info = plate_step_info,
                                                   .step = plate_step,
                                                   .energy = plate_energy,
                                                   .state = plate_state,

@@ -9,6 +9,10 @@
  *   stable_dt  the largest stable step of the solver's rule (central
  *              difference 2/sqrt(lambda); TSPH: von Neumann, 0 if none)
  *   set_dt     MFS_EINVAL above it unless force
+ *   choose_step choose the stable step again by a rule of mfs_dt_rule
+ *              (mfs_explicit.h), before set_state; NULL: the solver has
+ *              one rule (TSPH's von Neumann limit)
+ *   step_info  what the rule found (NULL where choose_step is NULL)
  *   step       one step of `scheme` (the TSPH bar has its own scheme)
  *   fields     bring the stresses of the view up to date (NULL: always are)
  *   energy     kinetic, potential and (plate) the leapfrog's modified
@@ -53,6 +57,8 @@ typedef struct {
   mfs_status (*set_state)(void *solver, const double *u, const double *v);
   double (*stable_dt)(void *solver);
   mfs_status (*set_dt)(void *solver, double dt, int force);
+  mfs_status (*choose_step)(void *solver, mfs_dt_rule rule);
+  const mfs_dt_info *(*step_info)(const void *solver);
   mfs_status (*step)(void *solver, mfs_scheme scheme);
   mfs_status (*fields)(void *solver);
   mfs_status (*energy)(void *solver, double *kinetic, double *potential, double *modified);

@@ -6,6 +6,7 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "mfs_assemble.h"
 #include "mfs_bound.h"
 #include "mfs_eval.h"
 #include "mfs_mls1d.h"
@@ -257,6 +258,8 @@ static void impose(mfs_solver *s, double *u, double *v, double t)
 
 /* Largest |eigenvalue| of M^-1 K at u = 0 by power iteration, K v taken as a
  * difference of internal forces (the equilibration load cancels). */
+enum { POWER_ITERATIONS = 300 };
+
 static int power_lambda(mfs_solver *s, double *lambda)
 {
   mfs_solver_work *w = s->w;
@@ -271,7 +274,7 @@ static int power_lambda(mfs_solver *s, double *lambda)
   if (st != MFS_OK)
     return st;
   double lam = 0.0;
-  for (int it = 0; it < 300; it++) {
+  for (int it = 0; it < POWER_ITERATIONS; it++) {
     double nv = 0.0;
     for (size_t I = 0; I < n; I++)
       nv += vec[I] * vec[I];
@@ -293,6 +296,126 @@ static int power_lambda(mfs_solver *s, double *lambda)
       vec[I] = kv[I] / (lam > 0.0 ? lam : 1.0);
   }
   *lambda = lam;
+  return MFS_OK;
+}
+
+/* The linearized stiffness at u = 0 applies to the Gershgorin and certified
+ * rules when it is K(Cbar), Cbar = E + S0 (eq. 81): the Lagrangian kernel,
+ * or the Eulerian one without initial stress (sigma = 0 at u = 0, so the
+ * motion of the shape functions does not enter; with S0 != 0 the Eulerian
+ * linearization has the kernel-motion terms of eqs 71-75, not bounded here). */
+static const char *stiffness_rule_applies(const mfs_solver *s)
+{
+  const mfs_disc *d = &s->spec.disc;
+  if (d->frame == MFS_FRAME_EULERIAN && d->material.initial_stress != 0.0)
+    return "the Eulerian rod with an initial stress: its linearization has kernel-motion terms "
+           "that neither bound covers";
+  if (!(d->material.modulus + d->material.initial_stress > 0.0))
+    return "Cbar = E + S0 <= 0: the linearized stiffness is not positive";
+  for (size_t I = 0; I < s->n; I++)
+    if (!(s->m[I] > 0.0))
+      return "a lumped mass <= 0";
+  return NULL;
+}
+
+/* The Gershgorin bound of M^-1 K(Cbar) with the rod's masses, from the plan
+ * (one pass over the rows, fixed particles removed). */
+static mfs_status rod_gershgorin(mfs_solver *s, double *lambda)
+{
+  const mfs_disc *d = &s->spec.disc;
+  mfs_material mat = {.physics = MFS_PHYS_SCALAR,
+                      .modulus = d->material.modulus + d->material.initial_stress,
+                      .density = d->material.density};
+  mfs_forms f = mfs_forms_stiffness(&mat);
+  mfs_gershgorin_op op = {.forms = &f, .ndof = 1, .mass = s->m, .density = mat.density};
+  mfs_gershgorin_result g;
+  mfs_status st = mfs_gershgorin_op_plan(s->w->pl, &op, s->w->fixed, &g, NULL);
+  *lambda = g.lambda;
+  return st;
+}
+
+/* The certified step of the pencil (K(Cbar), m) on the free particles. */
+static mfs_status rod_certify(mfs_solver *s, mfs_dt_info *info)
+{
+  const mfs_disc *d = &s->spec.disc;
+  mfs_material mat = {.physics = MFS_PHYS_SCALAR,
+                      .modulus = d->material.modulus + d->material.initial_stress,
+                      .density = d->material.density};
+  mfs_csr *K = NULL;
+  double *m = NULL;
+  mfs_status st = mfs_assemble_pattern(s->w->pl, 1, s->w->fixed, &K);
+  if (st != MFS_OK)
+    goto done;
+  if ((st = mfs_assemble_fill(s->w->pl, &mat, s->w->fixed, K, NULL, NULL, NULL)) != MFS_OK)
+    goto done;
+  st = MFS_ENOMEM;
+  if (!(m = mfs_malloc((K->nrow ? K->nrow : 1) * sizeof *m)))
+    goto done;
+  size_t k = 0;
+  for (size_t I = 0; I < s->n; I++)
+    if (!s->w->fixed[I])
+      m[k++] = s->m[I];
+  mfs_pencil P = {.K = K, .M = NULL, .m = m};
+  st = mfs_dt_certify(&P, info);
+done:
+  mfs_free(m);
+  mfs_csr_free(K);
+  return st;
+}
+
+mfs_status mfs_solver_choose_step(mfs_solver *s, mfs_dt_rule rule)
+{
+  if ((unsigned)rule > MFS_DT_POWER)
+    return MFS_EINVAL;
+  if (s->step.requested == rule)
+    return MFS_OK;
+  mfs_dt_info in = mfs_dt_info_init(rule);
+  in.lambda_power = s->step.lambda_power; /* 300 force evaluations: kept once found */
+  in.power_iterations = s->step.power_iterations;
+  in.lambda_gershgorin = s->step.lambda_gershgorin;
+  const char *why = stiffness_rule_applies(s);
+  mfs_status st;
+  const char *block = why; /* neither stiffness rule applies */
+  if (rule == MFS_DT_CERTIFIED && !why) {
+    st = rod_certify(s, &in);
+    if (st == MFS_ENOMEM)
+      return st;
+    if (st == MFS_OK) {
+      in.lambda = in.lambda_certified;
+      in.proven = 1;
+    } else {
+      why = "no certificate (ARPACK or the factorizations failed)";
+    }
+  }
+  if (isnan(in.lambda) && rule != MFS_DT_POWER && !block) {
+    if (isnan(in.lambda_gershgorin) && (st = rod_gershgorin(s, &in.lambda_gershgorin)) != MFS_OK)
+      return st;
+    in.used = MFS_DT_GERSHGORIN;
+    if (in.lambda_gershgorin > 0.0 && isfinite(in.lambda_gershgorin)) {
+      in.lambda = in.lambda_gershgorin;
+      in.proven = 1;
+    } else if (!why) {
+      why = "the Gershgorin bound is not positive and finite";
+    }
+  }
+  if (isnan(in.lambda)) {
+    in.used = MFS_DT_POWER;
+    if (isnan(in.lambda_power)) {
+      if ((st = power_lambda(s, &in.lambda_power)) != MFS_OK)
+        return st;
+      in.power_iterations = POWER_ITERATIONS;
+    }
+    in.lambda = mfs_step_lambda(in.lambda_power, s->lambda_bound, s->negative_phi);
+    in.proven = in.lambda == s->lambda_bound && s->negative_phi == 0;
+  }
+  in.fallback = in.used != rule ? why : NULL;
+  if (isnan(in.lambda))
+    return MFS_EDOMAIN;
+  if (!isnan(in.lambda_power))
+    s->lambda_power = in.lambda_power;
+  s->step = in;
+  s->dt_crit = 2.0 / sqrt(in.lambda); /* eq. 120 */
+  s->dt = 0.9 * s->dt_crit;
   return MFS_OK;
 }
 
@@ -407,7 +530,7 @@ mfs_solver *mfs_solver_alloc(const mfs_solver_spec *spec, mfs_status *status, si
     if (st != MFS_OK)
       goto fail;
   }
-  /* stable step: element bound with Cbar = E + S0 (eqs 81, 132) and power iteration */
+  /* the element bound with Cbar = E + S0 (eqs 81, 132), for the power rule */
   mfs_material mat = {.physics = MFS_PHYS_SCALAR,
                       .modulus = d->material.modulus + d->material.initial_stress,
                       .density = d->material.density};
@@ -421,15 +544,10 @@ mfs_solver *mfs_solver_alloc(const mfs_solver_spec *spec, mfs_status *status, si
     s->lambda_bound = br.lambda;
     s->negative_phi = br.negative_phi;
   }
-  if ((st = power_lambda(s, &s->lambda_power)) != MFS_OK)
+  s->step = mfs_dt_info_init(MFS_DT_GERSHGORIN);
+  s->step.requested = (mfs_dt_rule)-1; /* nothing chosen yet */
+  if ((st = mfs_solver_choose_step(s, MFS_DT_GERSHGORIN)) != MFS_OK)
     goto fail;
-  double lam = mfs_step_lambda(s->lambda_power, s->lambda_bound, s->negative_phi);
-  if (isnan(lam)) {
-    st = MFS_EDOMAIN;
-    goto fail;
-  }
-  s->dt_crit = 2.0 / sqrt(lam); /* eq. 120 */
-  s->dt = 0.9 * s->dt_crit;
   if ((st = mfs_solver_reset(s)) != MFS_OK)
     goto fail;
   *status = MFS_OK;

@@ -28,11 +28,20 @@
  * Time integration: central difference (leapfrog, kick-drift-kick form with
  * velocities at whole steps: one force evaluation per step), forward Euler,
  * RK2 (midpoint), RK4, all with the same force routine.  Stable step:
- * dt_crit = 2 / sqrt(lambda), lambda = 1.05 times a power-iteration estimate
- * of lambda_max of the linearized operator at u = 0 (it converges from below),
- * or the element bound (eqs 124, 132, with Cbar = E + S0 in place of E) when
- * that is proven (every phi_I > 0 at the quadrature points) and smaller.  The
- * bound alone can be useless: MLS phi_I nearly vanish at free ends. */
+ * dt_crit = 2 / sqrt(lambda) (eq. 120), lambda from the linearized operator
+ * at u = 0 by a rule of mfs_dt_rule (mfs_explicit.h): by default the
+ * Gershgorin bound max_I sum_J |K_IJ| / m_I of K(Cbar), Cbar = E + S0 (the
+ * linearization of P = F S at F = 1, eq. 81), streamed from the plan: proven,
+ * one pass over the rows; `certified` factors sigma M - K(Cbar); `power`
+ * (the rule before these) is 1.05 times a 300-step power-iteration estimate
+ * of lambda_max (it converges from below: not proven), or the element bound
+ * (eqs 124, 132, with Cbar in place of E) when that is proven (every
+ * phi_I > 0 at the quadrature points) and smaller; the element bound alone
+ * can be useless: MLS phi_I nearly vanish at free ends.  K(Cbar) is the
+ * linearization of the Lagrangian kernel, and of the Eulerian one without
+ * initial stress; for the Eulerian rod with S0 != 0 (kernel-motion terms,
+ * eqs 71-75) and where some m_I <= 0 or Cbar <= 0 the Gershgorin and
+ * certified rules fall back to `power`, said in step.fallback. */
 #ifndef MFS_SOLVER_H
 #define MFS_SOLVER_H
 
@@ -77,6 +86,7 @@ typedef struct {
   double lambda_bound; /* element bound (eq. 132 with Cbar) */
   double lambda_power; /* power-iteration estimate */
   size_t negative_phi; /* points where eq. 132 is not guaranteed */
+  mfs_dt_info step;  /* the rule that chose dt_crit and what it found */
   long steps;
   long searches;       /* Eulerian neighbour searches */
   mfs_solver_spec spec;
@@ -89,6 +99,13 @@ typedef struct {
  * point *bad, MFS_ETOOSMALL, MFS_ENOMEM). */
 mfs_solver *mfs_solver_alloc(const mfs_solver_spec *spec, mfs_status *status, size_t *bad);
 void mfs_solver_free(mfs_solver *s);
+
+/* Choose dt_crit (and dt = 0.9 dt_crit) again by `rule` (mfs_solver_alloc
+ * uses MFS_DT_GERSHGORIN), filling s->step; the linearization is at u = 0,
+ * so call it before mfs_solver_set_state.  MFS_OK, MFS_EINVAL (unknown
+ * rule), MFS_EDOMAIN (no positive finite lambda), MFS_ENOMEM, the statuses of
+ * the force (MFS_ESINGULAR, Eulerian). */
+mfs_status mfs_solver_choose_step(mfs_solver *s, mfs_dt_rule rule);
 
 /* Back to u = v = 0, t = 0, steps = 0 (dt kept). */
 mfs_status mfs_solver_reset(mfs_solver *s);

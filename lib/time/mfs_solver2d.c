@@ -6,6 +6,7 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "mfs_assemble.h"
 #include "mfs_bound.h"
 #include "mfs_eval.h"
 #include "mfs_neighbor.h"
@@ -34,6 +35,7 @@ struct mfs_solver2d_work {
   double *out;
   int *loc;
   double a, skin;
+  double smax;           /* the largest principal |sigma0| (Pa) */
 };
 
 enum { POWER_ITERATIONS = 300 };
@@ -340,6 +342,123 @@ void mfs_solver2d_free(mfs_solver2d *s)
   mfs_free(s);
 }
 
+/* The tangent of P = F S at F = I under sigma0 (plane strain): dP_ij/dH_kl =
+ * delta_ik sigma0_lj + lambda delta_ij delta_kl + mu (delta_ik delta_jl +
+ * delta_il delta_jk); the block (i, k) of column k of a row of gradient
+ * products A^{jl} (mfs_forms.outer) is sum_jl tangent_ijkl A^{jl}. */
+static void stressed_block(const void *ctx, const mfs_row *row, size_t k, double *blk)
+{
+  const mfs_solver2d_work *w = ctx;
+  const double *A = row->K + 4 * k;
+  for (int i = 0; i < 2; i++)
+    for (int kk = 0; kk < 2; kk++) {
+      double v = 0.0;
+      for (int j = 0; j < 2; j++)
+        for (int l = 0; l < 2; l++) {
+          double t = (i == kk ? w->sig0[l * 2 + j] : 0.0) + (i == j && kk == l ? w->lam : 0.0) +
+                     w->mu * ((i == kk && j == l ? 1.0 : 0.0) + (i == l && j == kk ? 1.0 : 0.0));
+          v += t * A[j * 2 + l];
+        }
+      blk[i * 2 + kk] = v;
+    }
+}
+
+/* Which operator the step's bound sees: 0 the assembled K (the linear plate,
+ * and the Eulerian kernel without stress: sigma = 0 at u = 0, so the motion
+ * of the shape functions does not enter the linearization); 1 the stressed
+ * Lagrangian tangent (streamed); -1 none (the stressed Eulerian kernel:
+ * kernel-motion terms not bounded here). */
+static int step_operator(const mfs_solver2d *s)
+{
+  if (!s->stressed || s->w->smax == 0.0)
+    return 0;
+  return s->model->spec.disc.frame == MFS_FRAME_LAGRANGIAN ? 1 : -1;
+}
+
+mfs_status mfs_solver2d_choose_step(mfs_solver2d *s, mfs_dt_rule rule)
+{
+  if ((unsigned)rule > MFS_DT_POWER)
+    return MFS_EINVAL;
+  if (s->step.requested == rule)
+    return MFS_OK;
+  const mfs_model *md = s->model;
+  mfs_dt_info in = mfs_dt_info_init(rule);
+  in.lambda_power = s->step.lambda_power; /* kept once found */
+  in.power_iterations = s->step.power_iterations;
+  in.lambda_gershgorin = s->step.lambda_gershgorin;
+  int op = step_operator(s);
+  const char *why = NULL;
+  mfs_status st;
+  for (size_t i = 0; i < s->n && !why; i++)
+    if (!(s->m[i] > 0.0))
+      why = "a lumped mass <= 0";
+  if (!why && op < 0)
+    why = "the stressed Eulerian plate: its linearization has kernel-motion terms that neither "
+          "bound covers";
+  const char *block = why; /* neither stiffness rule applies */
+  if (rule == MFS_DT_CERTIFIED && !why) {
+    if (op == 0) {
+      mfs_pencil P = {.K = md->K, .M = NULL, .m = md->m};
+      st = mfs_dt_certify(&P, &in);
+      if (st == MFS_ENOMEM)
+        return st;
+      if (st == MFS_OK) {
+        in.lambda = in.lambda_certified;
+        in.proven = 1;
+      } else {
+        why = "no certificate (ARPACK or the factorizations failed)";
+      }
+    } else {
+      why = "the stressed plate's tangent stiffness is not assembled: no certificate";
+    }
+  }
+  if (isnan(in.lambda) && rule != MFS_DT_POWER && !block) {
+    if (isnan(in.lambda_gershgorin)) {
+      mfs_gershgorin_result g;
+      if (op == 0) {
+        st = mfs_gershgorin_csr(md->K, md->m, md->dof, &g);
+      } else {
+        mfs_forms f = mfs_forms_stiffness(&md->mat);
+        f.outer = 1;
+        mfs_gershgorin_op gop = {.forms = &f, .ndof = 2, .block = stressed_block, .ctx = s->w,
+                                 .density = md->mat.density};
+        st = mfs_gershgorin_op_plan(md->pl, &gop, md->fixed, &g, NULL);
+      }
+      if (st != MFS_OK)
+        return st;
+      in.lambda_gershgorin = g.lambda;
+    }
+    in.used = MFS_DT_GERSHGORIN;
+    if (in.lambda_gershgorin > 0.0 && isfinite(in.lambda_gershgorin)) {
+      in.lambda = in.lambda_gershgorin;
+      in.proven = 1;
+    } else if (!why) {
+      why = "the Gershgorin bound is not positive and finite";
+    }
+  }
+  if (isnan(in.lambda)) {
+    in.used = MFS_DT_POWER;
+    if (isnan(in.lambda_power)) {
+      in.lambda_power = power_lambda(s);
+      in.power_iterations = POWER_ITERATIONS;
+    }
+    in.lambda = mfs_step_lambda(in.lambda_power, s->lambda_bound, s->negative_phi);
+    in.proven = !s->stressed && in.lambda == s->lambda_bound && s->negative_phi == 0;
+    if (s->stressed) /* an estimate: the initial-stress terms are O(sigma0/mu) of K */
+      in.lambda *= 1.0 + s->w->smax / md->mat.modulus;
+  }
+  in.fallback = in.used != rule ? why : NULL;
+  if (isnan(in.lambda))
+    return MFS_EDOMAIN;
+  if (!isnan(in.lambda_power))
+    s->lambda_power = in.lambda_power;
+  s->step = in;
+  s->lambda = in.lambda;
+  s->dt_crit = mfs_dt_crit(in.lambda); /* eq. 120 */
+  s->dt = 0.9 * s->dt_crit;
+  return MFS_OK;
+}
+
 mfs_solver2d *mfs_solver2d_alloc(const mfs_model_spec *spec, mfs_status *status, size_t *bad)
 {
   return mfs_solver2d_alloc_stressed(spec, NULL, 0.0, status, bad);
@@ -444,7 +563,7 @@ mfs_solver2d *mfs_solver2d_alloc_stressed(const mfs_model_spec *spec, const doub
     X[i] = md->p->x[particle * (size_t)dim];
     Y[i] = dim > 1 ? md->p->x[particle * (size_t)dim + 1] : 0.0;
   }
-  /* stable step: the rule of mfs_step_lambda (mfs_bound.h) */
+  /* the element bound, for the power rule */
   mfs_bound_result br;
   mfs_status bst = mfs_bound_of_model(md, &br);
   if (bst == MFS_ENOMEM) { /* not a reason to choose the step from the power iteration alone */
@@ -455,22 +574,16 @@ mfs_solver2d *mfs_solver2d_alloc_stressed(const mfs_model_spec *spec, const doub
     s->lambda_bound = br.lambda;
     s->negative_phi = br.negative_phi;
   }
-  s->lambda_power = power_lambda(s);
-  double lam = mfs_step_lambda(s->lambda_power, s->lambda_bound, s->negative_phi);
-  if (isnan(lam)) {
-    st = MFS_EDOMAIN;
-    goto fail;
-  }
   if (stressed) {
     double sx = sigma0 ? sigma0[0] : 0.0, sy = sigma0 ? sigma0[1] : 0.0, t = sigma0 ? sigma0[2] : 0.0;
-    double smax = 0.5 * fabs(sx + sy) + hypot(0.5 * (sx - sy), t); /* largest principal |sigma0| */
-    lam *= 1.0 + smax / md->mat.modulus;
+    s->w->smax = 0.5 * fabs(sx + sy) + hypot(0.5 * (sx - sy), t); /* largest principal |sigma0| */
     if ((st = stressed_init(s, sigma0 ? sigma0 : (const double[3]){0, 0, 0}, skin)) != MFS_OK)
       goto fail;
   }
-  s->lambda = lam;
-  s->dt_crit = mfs_dt_crit(lam); /* eq. 120 */
-  s->dt = 0.9 * s->dt_crit;
+  s->step = mfs_dt_info_init(MFS_DT_GERSHGORIN);
+  s->step.requested = (mfs_dt_rule)-1; /* nothing chosen yet */
+  if ((st = mfs_solver2d_choose_step(s, MFS_DT_GERSHGORIN)) != MFS_OK)
+    goto fail;
   mfs_solver2d_reset(s);
   *status = MFS_OK;
   return s;

@@ -20,15 +20,19 @@
  * (leapfrog, eq. 120 with xi = 0, kick-drift-kick with velocities at whole
  * steps: one K product per step), forward Euler, RK2 (midpoint), RK4.
  *
- * Stable step of the central difference: dt_crit = 2 / sqrt(lambda),
- * lambda an estimate of lambda_max of M^-1 K combined as in mfs_solver.c:
- * 1.05 times a power-iteration estimate (the Rayleigh quotient after 300
- * iterations on the symmetric M^-1/2 K M^-1/2 from a fixed pseudo-random
- * start: a lower bound, short of lambda_max by at most lambda_max / (2 e 300)
- * times the start's weight off the top eigenvector relative to on it), or the
- * element bound (eqs 124, 132, mfs_bound.h) where it is proven (every
- * phi_I > 0 at the quadrature points) and smaller.  The exact lambda_max is
- * at hand for a check (mfs_eig_max, mfs_eig_dense on model->K, model->m).
+ * Stable step of the central difference: dt_crit = 2 / sqrt(lambda), lambda
+ * from the linearized operator at u = 0 by a rule of mfs_dt_rule
+ * (mfs_explicit.h; mfs_solver2d_choose_step): by default the Gershgorin
+ * bound max_i sum_j |K_ij| / m_i (proven, one pass over the nonzeros);
+ * `certified` factors sigma M - K (mfs_eig_certify_search); `power` (the
+ * rule before these) is 1.05 times a power-iteration estimate (the Rayleigh
+ * quotient after 300 iterations on the symmetric M^-1/2 K M^-1/2 from a fixed
+ * pseudo-random start: a lower bound, short of lambda_max by at most
+ * lambda_max / (2 e 300) times the start's weight off the top eigenvector
+ * relative to on it), or the element bound (eqs 124, 132, mfs_bound.h) where
+ * it is proven (every phi_I > 0 at the quadrature points) and smaller.  The
+ * exact lambda_max is at hand for a check (mfs_eig_max, mfs_eig_dense on
+ * model->K, model->m).
  *
  * Energy: kinetic 1/2 v^T M v, potential 1/2 u^T K u.  Their sum E is what
  * the exact dynamics conserves.  The leapfrog conserves exactly (a linear
@@ -57,7 +61,12 @@
  *     dispersion analysis; for sph with nodal integration also eq. 71's).
  *     Candidate neighbours within a + skin, searched again when a point
  *     moved more than skin/2 (counted in `searches`).
- * The stable step comes from the unstressed K as above with lambda scaled by
+ * The stable step of the stressed plate: Lagrangian kernel, the Gershgorin
+ * bound of the tangent stiffness at u = 0 (the gradient products A^{jl}
+ * contracted with dP/dH = delta sigma0 + C, streamed from the table: proven);
+ * no certificate (the tangent is not assembled: `certified` falls back to
+ * Gershgorin); Eulerian kernel with sigma0 != 0: `power` (the kernel motion's
+ * terms are not bounded), from the unstressed K as above with lambda scaled by
  * 1 + |sigma0|_max / mu (an estimate: the initial-stress terms of the
  * linearized operator are O(sigma0/mu) of it).  Energy: kinetic always; the
  * Lagrangian plate's potential sum_Q w_Q (sigma0:E + lambda/2 tr(E)^2 + mu E:E)
@@ -93,6 +102,7 @@ typedef struct {
   double lambda_power; /* power-iteration estimate (a lower bound) */
   double lambda_bound; /* element bound (eq. 124); proven where negative_phi == 0 */
   size_t negative_phi; /* quadrature points where the bound is not guaranteed */
+  mfs_dt_info step;  /* the rule that chose dt_crit and what it found */
   long steps;
   int stressed;        /* the initially stressed (nonlinear) plate */
   long searches;       /* Eulerian neighbour searches */
@@ -118,6 +128,12 @@ mfs_solver2d *mfs_solver2d_alloc(const mfs_model_spec *spec, mfs_status *status,
 mfs_solver2d *mfs_solver2d_alloc_stressed(const mfs_model_spec *spec, const double *sigma0,
                                           double skin, mfs_status *status, size_t *bad);
 void mfs_solver2d_free(mfs_solver2d *s);
+
+/* Choose dt_crit (and dt = 0.9 dt_crit) again by `rule` (the allocs use
+ * MFS_DT_GERSHGORIN), filling s->step; from the operator at u = 0, before
+ * any step.  MFS_OK, MFS_EINVAL (unknown rule), MFS_EDOMAIN (no positive
+ * finite lambda), MFS_ENOMEM. */
+mfs_status mfs_solver2d_choose_step(mfs_solver2d *s, mfs_dt_rule rule);
 
 /* Back to u = v = a = 0, t = 0, steps = 0 (dt kept). */
 void mfs_solver2d_reset(mfs_solver2d *s);
