@@ -149,3 +149,40 @@ mfs_status mfs_dt_certify(const mfs_pencil *P, mfs_dt_info *info)
   info->lambda_certified = cr.lambda_upper;
   return MFS_OK;
 }
+
+mfs_status mfs_dt_choose(const mfs_dt_ops *o, mfs_dt_rule rule, mfs_dt_info *in)
+{
+  const char *why = o->block;
+  mfs_status st;
+  if (rule == MFS_DT_CERTIFIED && !why) {
+    const char *na = NULL;
+    st = o->certify(o->ctx, in, &na);
+    if (st == MFS_ENOMEM)
+      return st;
+    if (st == MFS_OK) {
+      in->lambda = in->lambda_certified;
+      in->proven = 1;
+    } else {
+      why = na ? na : "no certificate (ARPACK or the factorizations failed)";
+    }
+  }
+  if (isnan(in->lambda) && rule != MFS_DT_POWER && !o->block) {
+    if (isnan(in->lambda_gershgorin) &&
+        (st = o->gershgorin(o->ctx, &in->lambda_gershgorin)) != MFS_OK)
+      return st;
+    in->used = MFS_DT_GERSHGORIN;
+    if (in->lambda_gershgorin > 0.0 && isfinite(in->lambda_gershgorin)) {
+      in->lambda = in->lambda_gershgorin;
+      in->proven = 1;
+    } else if (!why) {
+      why = "the Gershgorin bound is not positive and finite";
+    }
+  }
+  if (isnan(in->lambda)) {
+    in->used = MFS_DT_POWER;
+    if ((st = o->power(o->ctx, in)) != MFS_OK)
+      return st;
+  }
+  in->fallback = in->used != rule ? why : NULL;
+  return isnan(in->lambda) ? MFS_EDOMAIN : MFS_OK;
+}

@@ -115,6 +115,28 @@ mfs_status mfs_dt_certify(const mfs_pencil *P, mfs_dt_info *info);
 /* An mfs_dt_info with nothing computed for rule r. */
 mfs_dt_info mfs_dt_info_init(mfs_dt_rule r);
 
+/* A solver's ways to a lambda, for mfs_dt_choose. */
+typedef struct {
+  void *ctx;
+  const char *block; /* why neither stiffness rule applies here (static text), or NULL */
+  /* the certified step into in (lambda_certified): MFS_OK, MFS_ENOMEM, or
+   * another status to fall back, with *why set where the reason is not
+   * "no certificate" (static text) */
+  mfs_status (*certify)(void *ctx, mfs_dt_info *in, const char **why);
+  mfs_status (*gershgorin)(void *ctx, double *lambda); /* into in->lambda_gershgorin */
+  /* the power rule: in->lambda_power (if NAN) and power_iterations, then
+   * in->lambda and in->proven from it */
+  mfs_status (*power)(void *ctx, mfs_dt_info *in);
+} mfs_dt_ops;
+
+/* The step rule's lambda into in (made by mfs_dt_info_init(rule), with the
+ * values already known kept): the certified step where requested and
+ * possible, else the Gershgorin bound unless the power rule was requested,
+ * else the power rule; in->used the rule that gave in->lambda, in->fallback
+ * why the requested one did not.  MFS_OK; MFS_EDOMAIN (no lambda); the
+ * callbacks' ENOMEM and errors. */
+mfs_status mfs_dt_choose(const mfs_dt_ops *o, mfs_dt_rule rule, mfs_dt_info *in);
+
 /* a = a(u); MFS_OK or the caller's error status. */
 typedef int (*mfs_accel_fn)(void *ctx, const double *u, double *a);
 /* Impose the conditions at time t on u and on v (either may be NULL). */

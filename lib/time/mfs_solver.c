@@ -363,6 +363,32 @@ done:
   return st;
 }
 
+/* mfs_dt_ops's callbacks */
+static mfs_status rod_certify_op(void *ctx, mfs_dt_info *in, const char **why)
+{
+  (void)why;
+  return rod_certify(ctx, in);
+}
+
+static mfs_status rod_gershgorin_op(void *ctx, double *lambda)
+{
+  return rod_gershgorin(ctx, lambda);
+}
+
+static mfs_status rod_power_op(void *ctx, mfs_dt_info *in)
+{
+  mfs_solver *s = ctx;
+  if (isnan(in->lambda_power)) {
+    mfs_status st = power_lambda(s, &in->lambda_power);
+    if (st != MFS_OK)
+      return st;
+    in->power_iterations = POWER_ITERATIONS;
+  }
+  in->lambda = mfs_step_lambda(in->lambda_power, s->lambda_bound, s->negative_phi);
+  in->proven = in->lambda == s->lambda_bound && s->negative_phi == 0;
+  return MFS_OK;
+}
+
 mfs_status mfs_solver_choose_step(mfs_solver *s, mfs_dt_rule rule)
 {
   if ((unsigned)rule > MFS_DT_POWER)
@@ -373,44 +399,14 @@ mfs_status mfs_solver_choose_step(mfs_solver *s, mfs_dt_rule rule)
   in.lambda_power = s->step.lambda_power; /* 300 force evaluations: kept once found */
   in.power_iterations = s->step.power_iterations;
   in.lambda_gershgorin = s->step.lambda_gershgorin;
-  const char *why = stiffness_rule_applies(s);
-  mfs_status st;
-  const char *block = why; /* neither stiffness rule applies */
-  if (rule == MFS_DT_CERTIFIED && !why) {
-    st = rod_certify(s, &in);
-    if (st == MFS_ENOMEM)
-      return st;
-    if (st == MFS_OK) {
-      in.lambda = in.lambda_certified;
-      in.proven = 1;
-    } else {
-      why = "no certificate (ARPACK or the factorizations failed)";
-    }
-  }
-  if (isnan(in.lambda) && rule != MFS_DT_POWER && !block) {
-    if (isnan(in.lambda_gershgorin) && (st = rod_gershgorin(s, &in.lambda_gershgorin)) != MFS_OK)
-      return st;
-    in.used = MFS_DT_GERSHGORIN;
-    if (in.lambda_gershgorin > 0.0 && isfinite(in.lambda_gershgorin)) {
-      in.lambda = in.lambda_gershgorin;
-      in.proven = 1;
-    } else if (!why) {
-      why = "the Gershgorin bound is not positive and finite";
-    }
-  }
-  if (isnan(in.lambda)) {
-    in.used = MFS_DT_POWER;
-    if (isnan(in.lambda_power)) {
-      if ((st = power_lambda(s, &in.lambda_power)) != MFS_OK)
-        return st;
-      in.power_iterations = POWER_ITERATIONS;
-    }
-    in.lambda = mfs_step_lambda(in.lambda_power, s->lambda_bound, s->negative_phi);
-    in.proven = in.lambda == s->lambda_bound && s->negative_phi == 0;
-  }
-  in.fallback = in.used != rule ? why : NULL;
-  if (isnan(in.lambda))
-    return MFS_EDOMAIN;
+  mfs_dt_ops ops = {.ctx = s,
+                    .block = stiffness_rule_applies(s),
+                    .certify = rod_certify_op,
+                    .gershgorin = rod_gershgorin_op,
+                    .power = rod_power_op};
+  mfs_status st = mfs_dt_choose(&ops, rule, &in);
+  if (st != MFS_OK)
+    return st;
   if (!isnan(in.lambda_power))
     s->lambda_power = in.lambda_power;
   s->step = in;

@@ -375,81 +375,77 @@ static int step_operator(const mfs_solver2d *s)
   return s->model->spec.disc.frame == MFS_FRAME_LAGRANGIAN ? 1 : -1;
 }
 
+/* mfs_dt_ops's callbacks */
+static mfs_status plate_certify_op(void *ctx, mfs_dt_info *in, const char **why)
+{
+  mfs_solver2d *s = ctx;
+  if (step_operator(s) != 0) {
+    *why = "the stressed plate's tangent stiffness is not assembled: no certificate";
+    return MFS_EDOMAIN;
+  }
+  mfs_pencil P = {.K = s->model->K, .M = NULL, .m = s->model->m};
+  return mfs_dt_certify(&P, in);
+}
+
+static mfs_status plate_gershgorin_op(void *ctx, double *lambda)
+{
+  mfs_solver2d *s = ctx;
+  const mfs_model *md = s->model;
+  mfs_gershgorin_result g;
+  mfs_status st;
+  if (step_operator(s) == 0) {
+    st = mfs_gershgorin_csr(md->K, md->m, md->dof, &g);
+  } else {
+    mfs_forms f = mfs_forms_stiffness(&md->mat);
+    f.outer = 1;
+    mfs_gershgorin_op gop = {.forms = &f, .ndof = 2, .block = stressed_block, .ctx = s->w,
+                             .density = md->mat.density};
+    st = mfs_gershgorin_op_plan(md->pl, &gop, md->fixed, &g, NULL);
+  }
+  if (st == MFS_OK)
+    *lambda = g.lambda;
+  return st;
+}
+
+static mfs_status plate_power_op(void *ctx, mfs_dt_info *in)
+{
+  mfs_solver2d *s = ctx;
+  if (isnan(in->lambda_power)) {
+    in->lambda_power = power_lambda(s);
+    in->power_iterations = POWER_ITERATIONS;
+  }
+  in->lambda = mfs_step_lambda(in->lambda_power, s->lambda_bound, s->negative_phi);
+  in->proven = !s->stressed && in->lambda == s->lambda_bound && s->negative_phi == 0;
+  if (s->stressed) /* an estimate: the initial-stress terms are O(sigma0/mu) of K */
+    in->lambda *= 1.0 + s->w->smax / s->model->mat.modulus;
+  return MFS_OK;
+}
+
 mfs_status mfs_solver2d_choose_step(mfs_solver2d *s, mfs_dt_rule rule)
 {
   if ((unsigned)rule > MFS_DT_POWER)
     return MFS_EINVAL;
   if (s->step.requested == rule)
     return MFS_OK;
-  const mfs_model *md = s->model;
   mfs_dt_info in = mfs_dt_info_init(rule);
   in.lambda_power = s->step.lambda_power; /* kept once found */
   in.power_iterations = s->step.power_iterations;
   in.lambda_gershgorin = s->step.lambda_gershgorin;
-  int op = step_operator(s);
-  const char *why = NULL;
-  mfs_status st;
-  for (size_t i = 0; i < s->n && !why; i++)
+  const char *block = NULL; /* neither stiffness rule applies */
+  for (size_t i = 0; i < s->n && !block; i++)
     if (!(s->m[i] > 0.0))
-      why = "a lumped mass <= 0";
-  if (!why && op < 0)
-    why = "the stressed Eulerian plate: its linearization has kernel-motion terms that neither "
-          "bound covers";
-  const char *block = why; /* neither stiffness rule applies */
-  if (rule == MFS_DT_CERTIFIED && !why) {
-    if (op == 0) {
-      mfs_pencil P = {.K = md->K, .M = NULL, .m = md->m};
-      st = mfs_dt_certify(&P, &in);
-      if (st == MFS_ENOMEM)
-        return st;
-      if (st == MFS_OK) {
-        in.lambda = in.lambda_certified;
-        in.proven = 1;
-      } else {
-        why = "no certificate (ARPACK or the factorizations failed)";
-      }
-    } else {
-      why = "the stressed plate's tangent stiffness is not assembled: no certificate";
-    }
-  }
-  if (isnan(in.lambda) && rule != MFS_DT_POWER && !block) {
-    if (isnan(in.lambda_gershgorin)) {
-      mfs_gershgorin_result g;
-      if (op == 0) {
-        st = mfs_gershgorin_csr(md->K, md->m, md->dof, &g);
-      } else {
-        mfs_forms f = mfs_forms_stiffness(&md->mat);
-        f.outer = 1;
-        mfs_gershgorin_op gop = {.forms = &f, .ndof = 2, .block = stressed_block, .ctx = s->w,
-                                 .density = md->mat.density};
-        st = mfs_gershgorin_op_plan(md->pl, &gop, md->fixed, &g, NULL);
-      }
-      if (st != MFS_OK)
-        return st;
-      in.lambda_gershgorin = g.lambda;
-    }
-    in.used = MFS_DT_GERSHGORIN;
-    if (in.lambda_gershgorin > 0.0 && isfinite(in.lambda_gershgorin)) {
-      in.lambda = in.lambda_gershgorin;
-      in.proven = 1;
-    } else if (!why) {
-      why = "the Gershgorin bound is not positive and finite";
-    }
-  }
-  if (isnan(in.lambda)) {
-    in.used = MFS_DT_POWER;
-    if (isnan(in.lambda_power)) {
-      in.lambda_power = power_lambda(s);
-      in.power_iterations = POWER_ITERATIONS;
-    }
-    in.lambda = mfs_step_lambda(in.lambda_power, s->lambda_bound, s->negative_phi);
-    in.proven = !s->stressed && in.lambda == s->lambda_bound && s->negative_phi == 0;
-    if (s->stressed) /* an estimate: the initial-stress terms are O(sigma0/mu) of K */
-      in.lambda *= 1.0 + s->w->smax / md->mat.modulus;
-  }
-  in.fallback = in.used != rule ? why : NULL;
-  if (isnan(in.lambda))
-    return MFS_EDOMAIN;
+      block = "a lumped mass <= 0";
+  if (!block && step_operator(s) < 0)
+    block = "the stressed Eulerian plate: its linearization has kernel-motion terms that neither "
+            "bound covers";
+  mfs_dt_ops ops = {.ctx = s,
+                    .block = block,
+                    .certify = plate_certify_op,
+                    .gershgorin = plate_gershgorin_op,
+                    .power = plate_power_op};
+  mfs_status st = mfs_dt_choose(&ops, rule, &in);
+  if (st != MFS_OK)
+    return st;
   if (!isnan(in.lambda_power))
     s->lambda_power = in.lambda_power;
   s->step = in;
