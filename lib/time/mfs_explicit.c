@@ -4,6 +4,7 @@
 #include <math.h>
 #include <string.h>
 
+#include "mfs_bound.h"
 #include "mfs_status.h"
 
 static int leapfrog(size_t n, double *u, double *v, double *a, double t1, double dt,
@@ -150,39 +151,56 @@ mfs_status mfs_dt_certify(const mfs_pencil *P, mfs_dt_info *info)
   return MFS_OK;
 }
 
-mfs_status mfs_dt_choose(const mfs_dt_ops *o, mfs_dt_rule rule, mfs_dt_info *in)
+mfs_status mfs_dt_choose(const mfs_dt_ops *o, mfs_dt_rule rule, mfs_dt_info *step, int *changed)
 {
+  *changed = 0;
+  if ((unsigned)rule > MFS_DT_POWER)
+    return MFS_EINVAL;
+  if (step->requested == rule)
+    return MFS_OK;
+  mfs_dt_info in = mfs_dt_info_init(rule);
+  in.lambda_power = step->lambda_power; /* kept once found */
+  in.power_iterations = step->power_iterations;
+  in.lambda_gershgorin = step->lambda_gershgorin;
   const char *why = o->block;
   mfs_status st;
   if (rule == MFS_DT_CERTIFIED && !why) {
     const char *na = NULL;
-    st = o->certify(o->ctx, in, &na);
+    st = o->certify(o->ctx, &in, &na);
     if (st == MFS_ENOMEM)
       return st;
     if (st == MFS_OK) {
-      in->lambda = in->lambda_certified;
-      in->proven = 1;
+      in.lambda = in.lambda_certified;
+      in.proven = 1;
     } else {
       why = na ? na : "no certificate (ARPACK or the factorizations failed)";
     }
   }
-  if (isnan(in->lambda) && rule != MFS_DT_POWER && !o->block) {
-    if (isnan(in->lambda_gershgorin) &&
-        (st = o->gershgorin(o->ctx, &in->lambda_gershgorin)) != MFS_OK)
+  if (isnan(in.lambda) && rule != MFS_DT_POWER && !o->block) {
+    if (isnan(in.lambda_gershgorin) &&
+        (st = o->gershgorin(o->ctx, &in.lambda_gershgorin)) != MFS_OK)
       return st;
-    in->used = MFS_DT_GERSHGORIN;
-    if (in->lambda_gershgorin > 0.0 && isfinite(in->lambda_gershgorin)) {
-      in->lambda = in->lambda_gershgorin;
-      in->proven = 1;
+    in.used = MFS_DT_GERSHGORIN;
+    if (in.lambda_gershgorin > 0.0 && isfinite(in.lambda_gershgorin)) {
+      in.lambda = in.lambda_gershgorin;
+      in.proven = 1;
     } else if (!why) {
       why = "the Gershgorin bound is not positive and finite";
     }
   }
-  if (isnan(in->lambda)) {
-    in->used = MFS_DT_POWER;
-    if ((st = o->power(o->ctx, in)) != MFS_OK)
+  if (isnan(in.lambda)) {
+    in.used = MFS_DT_POWER;
+    if (isnan(in.lambda_power) &&
+        (st = o->power(o->ctx, &in.lambda_power, &in.power_iterations)) != MFS_OK)
       return st;
+    in.lambda = mfs_step_lambda(in.lambda_power, o->lambda_bound, o->negative_phi);
+    in.proven = !o->power_unproven && in.lambda == o->lambda_bound && o->negative_phi == 0;
+    in.lambda *= o->power_scale;
   }
-  in->fallback = in->used != rule ? why : NULL;
-  return isnan(in->lambda) ? MFS_EDOMAIN : MFS_OK;
+  in.fallback = in.used != rule ? why : NULL;
+  if (isnan(in.lambda))
+    return MFS_EDOMAIN;
+  *step = in;
+  *changed = 1;
+  return MFS_OK;
 }

@@ -123,19 +123,27 @@ typedef struct {
    * another status to fall back, with *why set where the reason is not
    * "no certificate" (static text) */
   mfs_status (*certify)(void *ctx, mfs_dt_info *in, const char **why);
-  mfs_status (*gershgorin)(void *ctx, double *lambda); /* into in->lambda_gershgorin */
-  /* the power rule: in->lambda_power (if NAN) and power_iterations, then
-   * in->lambda and in->proven from it */
-  mfs_status (*power)(void *ctx, mfs_dt_info *in);
+  mfs_status (*gershgorin)(void *ctx, double *lambda);
+  mfs_status (*power)(void *ctx, double *lambda, int *iterations);
+  /* the power rule's lambda: mfs_step_lambda(power, lambda_bound,
+   * negative_phi) times power_scale (1, or an estimate's margin); proven
+   * only where it is the element bound, negative_phi is 0 and
+   * power_unproven is 0 */
+  double lambda_bound;
+  size_t negative_phi;
+  double power_scale;
+  int power_unproven;
 } mfs_dt_ops;
 
-/* The step rule's lambda into in (made by mfs_dt_info_init(rule), with the
- * values already known kept): the certified step where requested and
+/* The step rule's lambda into *step (the solver's record; values it holds
+ * are kept, not computed again): the certified step where requested and
  * possible, else the Gershgorin bound unless the power rule was requested,
- * else the power rule; in->used the rule that gave in->lambda, in->fallback
- * why the requested one did not.  MFS_OK; MFS_EDOMAIN (no lambda); the
- * callbacks' ENOMEM and errors. */
-mfs_status mfs_dt_choose(const mfs_dt_ops *o, mfs_dt_rule rule, mfs_dt_info *in);
+ * else the power rule; step->used the rule that gave step->lambda,
+ * step->fallback why the requested one did not.  *changed = 0 if the rule
+ * was already the requested one (nothing done), else 1 on success.  MFS_OK;
+ * MFS_EINVAL (no such rule); MFS_EDOMAIN (no lambda); the callbacks'
+ * MFS_ENOMEM and errors; *step unchanged on failure. */
+mfs_status mfs_dt_choose(const mfs_dt_ops *o, mfs_dt_rule rule, mfs_dt_info *step, int *changed);
 
 /* a = a(u); MFS_OK or the caller's error status. */
 typedef int (*mfs_accel_fn)(void *ctx, const double *u, double *a);

@@ -375,42 +375,31 @@ static mfs_status rod_gershgorin_op(void *ctx, double *lambda)
   return rod_gershgorin(ctx, lambda);
 }
 
-static mfs_status rod_power_op(void *ctx, mfs_dt_info *in)
+static mfs_status rod_power_op(void *ctx, double *lambda, int *iterations)
 {
-  mfs_solver *s = ctx;
-  if (isnan(in->lambda_power)) {
-    mfs_status st = power_lambda(s, &in->lambda_power);
-    if (st != MFS_OK)
-      return st;
-    in->power_iterations = POWER_ITERATIONS;
-  }
-  in->lambda = mfs_step_lambda(in->lambda_power, s->lambda_bound, s->negative_phi);
-  in->proven = in->lambda == s->lambda_bound && s->negative_phi == 0;
-  return MFS_OK;
+  mfs_status st = power_lambda(ctx, lambda);
+  if (st == MFS_OK)
+    *iterations = POWER_ITERATIONS;
+  return st;
 }
 
 mfs_status mfs_solver_choose_step(mfs_solver *s, mfs_dt_rule rule)
 {
-  if ((unsigned)rule > MFS_DT_POWER)
-    return MFS_EINVAL;
-  if (s->step.requested == rule)
-    return MFS_OK;
-  mfs_dt_info in = mfs_dt_info_init(rule);
-  in.lambda_power = s->step.lambda_power; /* 300 force evaluations: kept once found */
-  in.power_iterations = s->step.power_iterations;
-  in.lambda_gershgorin = s->step.lambda_gershgorin;
   mfs_dt_ops ops = {.ctx = s,
                     .block = stiffness_rule_applies(s),
                     .certify = rod_certify_op,
                     .gershgorin = rod_gershgorin_op,
-                    .power = rod_power_op};
-  mfs_status st = mfs_dt_choose(&ops, rule, &in);
-  if (st != MFS_OK)
+                    .power = rod_power_op, /* 300 force evaluations: kept once found */
+                    .lambda_bound = s->lambda_bound,
+                    .negative_phi = s->negative_phi,
+                    .power_scale = 1.0};
+  int changed;
+  mfs_status st = mfs_dt_choose(&ops, rule, &s->step, &changed);
+  if (st != MFS_OK || !changed)
     return st;
-  if (!isnan(in.lambda_power))
-    s->lambda_power = in.lambda_power;
-  s->step = in;
-  s->dt_crit = 2.0 / sqrt(in.lambda); /* eq. 120 */
+  if (!isnan(s->step.lambda_power))
+    s->lambda_power = s->step.lambda_power;
+  s->dt_crit = 2.0 / sqrt(s->step.lambda); /* eq. 120 */
   s->dt = 0.9 * s->dt_crit;
   return MFS_OK;
 }

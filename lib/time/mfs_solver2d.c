@@ -407,30 +407,15 @@ static mfs_status plate_gershgorin_op(void *ctx, double *lambda)
   return st;
 }
 
-static mfs_status plate_power_op(void *ctx, mfs_dt_info *in)
+static mfs_status plate_power_op(void *ctx, double *lambda, int *iterations)
 {
-  mfs_solver2d *s = ctx;
-  if (isnan(in->lambda_power)) {
-    in->lambda_power = power_lambda(s);
-    in->power_iterations = POWER_ITERATIONS;
-  }
-  in->lambda = mfs_step_lambda(in->lambda_power, s->lambda_bound, s->negative_phi);
-  in->proven = !s->stressed && in->lambda == s->lambda_bound && s->negative_phi == 0;
-  if (s->stressed) /* an estimate: the initial-stress terms are O(sigma0/mu) of K */
-    in->lambda *= 1.0 + s->w->smax / s->model->mat.modulus;
+  *lambda = power_lambda(ctx);
+  *iterations = POWER_ITERATIONS;
   return MFS_OK;
 }
 
 mfs_status mfs_solver2d_choose_step(mfs_solver2d *s, mfs_dt_rule rule)
 {
-  if ((unsigned)rule > MFS_DT_POWER)
-    return MFS_EINVAL;
-  if (s->step.requested == rule)
-    return MFS_OK;
-  mfs_dt_info in = mfs_dt_info_init(rule);
-  in.lambda_power = s->step.lambda_power; /* kept once found */
-  in.power_iterations = s->step.power_iterations;
-  in.lambda_gershgorin = s->step.lambda_gershgorin;
   const char *block = NULL; /* neither stiffness rule applies */
   for (size_t i = 0; i < s->n && !block; i++)
     if (!(s->m[i] > 0.0))
@@ -438,19 +423,24 @@ mfs_status mfs_solver2d_choose_step(mfs_solver2d *s, mfs_dt_rule rule)
   if (!block && step_operator(s) < 0)
     block = "the stressed Eulerian plate: its linearization has kernel-motion terms that neither "
             "bound covers";
+  /* stressed: the power value is an estimate, the initial-stress terms O(sigma0/mu) of K */
   mfs_dt_ops ops = {.ctx = s,
                     .block = block,
                     .certify = plate_certify_op,
                     .gershgorin = plate_gershgorin_op,
-                    .power = plate_power_op};
-  mfs_status st = mfs_dt_choose(&ops, rule, &in);
-  if (st != MFS_OK)
+                    .power = plate_power_op,
+                    .lambda_bound = s->lambda_bound,
+                    .negative_phi = s->negative_phi,
+                    .power_scale = s->stressed ? 1.0 + s->w->smax / s->model->mat.modulus : 1.0,
+                    .power_unproven = s->stressed};
+  int changed;
+  mfs_status st = mfs_dt_choose(&ops, rule, &s->step, &changed);
+  if (st != MFS_OK || !changed)
     return st;
-  if (!isnan(in.lambda_power))
-    s->lambda_power = in.lambda_power;
-  s->step = in;
-  s->lambda = in.lambda;
-  s->dt_crit = mfs_dt_crit(in.lambda); /* eq. 120 */
+  if (!isnan(s->step.lambda_power))
+    s->lambda_power = s->step.lambda_power;
+  s->lambda = s->step.lambda;
+  s->dt_crit = mfs_dt_crit(s->step.lambda); /* eq. 120 */
   s->dt = 0.9 * s->dt_crit;
   return MFS_OK;
 }
