@@ -11,6 +11,7 @@
 #include <math.h>
 #include <stddef.h>
 
+#include "mfs_bound.h"
 #include "mfs_eigen.h"
 #include "mfs_status.h"
 
@@ -114,6 +115,23 @@ mfs_status mfs_dt_certify(const mfs_pencil *P, mfs_dt_info *info);
 
 /* An mfs_dt_info with nothing computed for rule r. */
 mfs_dt_info mfs_dt_info_init(mfs_dt_rule r);
+
+/* The element bound's result for the power rule: with bst MFS_OK, br's lambda
+ * and negative_phi into *lambda_bound and *negative_phi (else they stay as
+ * they are: the power rule then goes without it).  Returns MFS_ENOMEM if bst
+ * is (out of memory is not a reason to choose the step without the bound),
+ * else MFS_OK. */
+static inline mfs_status mfs_dt_take_bound(mfs_status bst, const mfs_bound_result *br,
+                                           double *lambda_bound, size_t *negative_phi)
+{
+  if (bst == MFS_ENOMEM)
+    return bst;
+  if (bst == MFS_OK) {
+    *lambda_bound = br->lambda;
+    *negative_phi = br->negative_phi;
+  }
+  return MFS_OK;
+}
 
 /* A solver's ways to a lambda, for mfs_dt_choose. */
 typedef struct {

@@ -521,14 +521,8 @@ mfs_solver *mfs_solver_alloc(const mfs_solver_spec *spec, mfs_status *status, si
                       .density = d->material.density};
   mfs_bound_result br;
   mfs_status bst = mat.modulus > 0.0 ? mfs_bound_plan(w->pl, &mat, w->fixed, &br) : MFS_EINVAL;
-  if (bst == MFS_ENOMEM) { /* not a reason to choose the step from the power iteration alone */
-    st = bst;
+  if ((st = mfs_dt_take_bound(bst, &br, &s->lambda_bound, &s->negative_phi)) != MFS_OK)
     goto fail;
-  }
-  if (bst == MFS_OK) {
-    s->lambda_bound = br.lambda;
-    s->negative_phi = br.negative_phi;
-  }
   s->step = mfs_dt_info_init(MFS_DT_GERSHGORIN);
   s->step.requested = (mfs_dt_rule)-1; /* nothing chosen yet */
   if ((st = mfs_solver_choose_step(s, MFS_DT_GERSHGORIN)) != MFS_OK)

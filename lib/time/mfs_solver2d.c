@@ -552,14 +552,8 @@ mfs_solver2d *mfs_solver2d_alloc_stressed(const mfs_model_spec *spec, const doub
   /* the element bound, for the power rule */
   mfs_bound_result br;
   mfs_status bst = mfs_bound_of_model(md, &br);
-  if (bst == MFS_ENOMEM) { /* not a reason to choose the step from the power iteration alone */
-    st = bst;
+  if ((st = mfs_dt_take_bound(bst, &br, &s->lambda_bound, &s->negative_phi)) != MFS_OK)
     goto fail;
-  }
-  if (bst == MFS_OK) {
-    s->lambda_bound = br.lambda;
-    s->negative_phi = br.negative_phi;
-  }
   if (stressed) {
     double sx = sigma0 ? sigma0[0] : 0.0, sy = sigma0 ? sigma0[1] : 0.0, t = sigma0 ? sigma0[2] : 0.0;
     s->w->smax = 0.5 * fabs(sx + sy) + hypot(0.5 * (sx - sy), t); /* largest principal |sigma0| */
