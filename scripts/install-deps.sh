@@ -19,12 +19,9 @@ if [ ${#missing[@]} -gt 0 ]; then
   # ARPACK's lambda_max here (notebooks-data/bench_blas.csv, docs/parallel.md);
   # LAPACKE, ARPACK and CHOLMOD load it through Debian's alternatives.  Set only
   # when this script installed something; to switch back:
-  #   update-alternatives --config libblas.so.3-x86_64-linux-gnu (and liblapack.so.3-...,
-  #   libopenblas.so.0-...).  libopenblas.so.0 too: the serial libblas.so.3 finds it
-  #   through $ORIGIN, which is the alternatives' directory, so without it the
-  #   pthread build's kernels and threads are the ones that run.
+  #   update-alternatives --config libblas.so.3-x86_64-linux-gnu (and liblapack.so.3-...)
   a=/usr/lib/x86_64-linux-gnu
-  for l in libblas.so.3 liblapack.so.3 libopenblas.so.0; do
+  for l in libblas.so.3 liblapack.so.3; do
     [ -e "$a/openblas-serial/$l" ] &&
       update-alternatives --set "$l-x86_64-linux-gnu" "$a/openblas-serial/$l" >/dev/null
   done
