@@ -20,6 +20,12 @@ if [ ${#missing[@]} -gt 0 ]; then
   # LAPACKE, ARPACK and CHOLMOD load it through Debian's alternatives.  Set only
   # when this script installed something; to switch back:
   #   update-alternatives --config libblas.so.3-x86_64-linux-gnu (and liblapack.so.3-...)
+  # The libopenblas.so.0 alternative is left alone (the pthread build, Debian's
+  # default): the serial libblas.so.3 loads libopenblas.so.0 through $ORIGIN, the
+  # alternatives' directory, so that build's kernels run, and unlike the serial
+  # libopenblas.so.0 it is safe to call from several OpenMP threads at once (with
+  # the serial one, tests/test_threads_dispersion.sh's zhegv sweep differed
+  # between thread counts in 1 of 15 runs, with the pthread one in 0 of 25).
   a=/usr/lib/x86_64-linux-gnu
   for l in libblas.so.3 liblapack.so.3; do
     [ -e "$a/openblas-serial/$l" ] &&
