@@ -17,6 +17,8 @@
 #ifndef MFS_BENCH_COMMON_H
 #define MFS_BENCH_COMMON_H
 
+#include <math.h>
+#include <stdio.h>
 #include <stdlib.h>
 #include <sys/resource.h>
 #include <time.h>
@@ -29,6 +31,26 @@ static inline double bench_now(void)
   struct timespec t;
   clock_gettime(CLOCK_MONOTONIC, &t);
   return (double)t.tv_sec + 1e-9 * (double)t.tv_nsec;
+}
+
+/* The 1-minute load average (NAN if /proc/loadavg cannot be read). */
+static inline double bench_load1(void)
+{
+  double l = NAN;
+  FILE *f = fopen("/proc/loadavg", "r");
+  if (f) {
+    if (fscanf(f, "%lf", &l) != 1)
+      l = NAN;
+    fclose(f);
+  }
+  return l;
+}
+
+/* qsort's comparison of doubles, ascending. */
+static inline int bench_cmp_double(const void *a, const void *b)
+{
+  double x = *(const double *)a, y = *(const double *)b;
+  return (x > y) - (x < y);
 }
 
 static inline double bench_peak_mb(void)

@@ -38,6 +38,7 @@
 
 #include "mfstab.h"
 #include "mfs_omp.h"
+#include "bench_common.h"
 
 static double now(void)
 {
@@ -51,24 +52,6 @@ static double rss_mb(void)
   struct rusage u;
   getrusage(RUSAGE_SELF, &u);
   return u.ru_maxrss / 1024.0;
-}
-
-static double load1(void)
-{
-  double l = NAN;
-  FILE *f = fopen("/proc/loadavg", "r");
-  if (f) {
-    if (fscanf(f, "%lf", &l) != 1)
-      l = NAN;
-    fclose(f);
-  }
-  return l;
-}
-
-static int cmp_d(const void *a, const void *b)
-{
-  double x = *(const double *)a, y = *(const double *)b;
-  return (x > y) - (x < y);
 }
 
 /* A family: plans (one per dilation), stresses, rays. */
@@ -337,14 +320,14 @@ static void bench(FILE *out, const char *name, int repeat, int threads, const ch
       run_phase(&f, phases[p], f.nk, f.kap, w);
       ts[r] = now() - t0;
     }
-    qsort(ts, (size_t)repeat, sizeof *ts, cmp_d);
+    qsort(ts, (size_t)repeat, sizeof *ts, bench_cmp_double);
     double med = ts[repeat / 2];
     if (p == 0)
       tdirect = med;
     double err = family_error(&f, w);
     fprintf(out, "%s,%s,%d,%d,1,%d,%.6g,%.6g,%.6g,%.4g,%.4g,%.4g,,%.3g,%.1f,%.2f\n", name,
             phases[p], npts, f.nb, repeat, ts[0], med, ts[repeat - 1], 1e9 * med / npts,
-            1e9 * med / npts / f.nb, tdirect / med, err, rss_mb(), load1());
+            1e9 * med / npts / f.nb, tdirect / med, err, rss_mb(), bench_load1());
     fflush(out);
   }
   if (npdir)
@@ -362,7 +345,7 @@ static void bench(FILE *out, const char *name, int repeat, int threads, const ch
       run_phase(&f, "threads", nk10, k10, w10[nt - 1]);
       ts[r] = now() - t0;
     }
-    qsort(ts, (size_t)repeat, sizeof *ts, cmp_d);
+    qsort(ts, (size_t)repeat, sizeof *ts, bench_cmp_double);
     double med = ts[repeat / 2];
     if (nt == 1)
       t1 = med;
@@ -370,7 +353,7 @@ static void bench(FILE *out, const char *name, int repeat, int threads, const ch
     fprintf(out, "%s,threads-%d,%d,%d,%d,%d,%.6g,%.6g,%.6g,%.4g,%.4g,%.4g,%s,,%.1f,%.2f\n", name,
             nt, npts * 20, f.nb, nt, repeat, ts[0], med, ts[repeat - 1], 1e9 * med / (npts * 20.0),
             1e9 * med / (npts * 20.0) / f.nb, t1 / med, nt == 1 ? "" : same ? "1" : "0", rss_mb(),
-            load1());
+            bench_load1());
     fflush(out);
   }
   set_threads(2);

@@ -28,6 +28,7 @@
 
 #include "mfstab.h"
 #include "mfs_omp.h"
+#include "bench_common.h"
 
 static double now(void)
 {
@@ -89,18 +90,6 @@ static int evaluate(const mfs_disp_plan *pl, const mfs_disp_sample *smp, const d
     if (creal(w[i]) < -tol || fabs(cimag(csqrt(w[i]))) > sqrt(tol))
       return 0;
   return 1;
-}
-
-static double load1(void)
-{
-  double l = NAN;
-  FILE *f = fopen("/proc/loadavg", "r");
-  if (f) {
-    if (fscanf(f, "%lf", &l) != 1)
-      l = NAN;
-    fclose(f);
-  }
-  return l;
 }
 
 /* One grid with nt threads, the least time of repeat runs (returned); res[q]
@@ -186,7 +175,7 @@ static double run(FILE *out, int N, mfs_frame fr, int repeat, int nt, int *res, 
   fprintf(out, "%s,%dx%d,%ld,%d,%.6g,%.6g,%.6g,%.6g,%.4g,%s,%d,%d,%d,%d,%.1f,%.2f\n",
           mfs_frame_name(fr), N, N, npt, nt, best_plan, best_grid, tot, tot / npt,
           res1 ? t1 / tot : 1.0, res1 ? (same ? "1" : "0") : "", npde, nst, nout, nsing, rss_mb(),
-          load1());
+          bench_load1());
   fflush(out);
   return tot;
 }

@@ -38,24 +38,6 @@
 enum { NRULE = 3, MAXREP = 50 };
 static const mfs_dt_rule order[NRULE] = {MFS_DT_POWER, MFS_DT_GERSHGORIN, MFS_DT_CERTIFIED};
 
-static double load1(void)
-{
-  double l = NAN;
-  FILE *f = fopen("/proc/loadavg", "r");
-  if (f) {
-    if (fscanf(f, "%lf", &l) != 1)
-      l = NAN;
-    fclose(f);
-  }
-  return l;
-}
-
-static int cmp(const void *a, const void *b)
-{
-  double x = *(const double *)a, y = *(const double *)b;
-  return (x > y) - (x < y);
-}
-
 /* One solver of either kind. */
 typedef struct {
   mfs_solver *rod;
@@ -114,7 +96,7 @@ static mfs_status scene(FILE *f, int plate, int n, int reps)
       return st;
     dofs = s.rod->n - 2;
   }
-  double sec[NRULE][MAXREP], load = load1();
+  double sec[NRULE][MAXREP], load = bench_load1();
   mfs_dt_info info[NRULE];
   int nrule = !plate && n > certified_max ? NRULE - 1 : NRULE; /* the certified rule last */
   st = MFS_OK;
@@ -123,12 +105,12 @@ static mfs_status scene(FILE *f, int plate, int n, int reps)
       double t0 = bench_now();
       st = choose(&s, order[r], &info[r]);
       sec[r][k] = bench_now() - t0;
-      load = fmax(load, load1());
+      load = fmax(load, bench_load1());
     }
   if (st == MFS_OK) {
     double med[NRULE];
     for (int r = 0; r < nrule; r++) {
-      qsort(sec[r], (size_t)reps, sizeof sec[r][0], cmp);
+      qsort(sec[r], (size_t)reps, sizeof sec[r][0], bench_cmp_double);
       med[r] = reps % 2 ? sec[r][reps / 2] : 0.5 * (sec[r][reps / 2 - 1] + sec[r][reps / 2]);
     }
     /* the reference lambda_max: the certified run's ARPACK value, or without one the
