@@ -73,6 +73,9 @@ if want dispersion; then
   say dispersion
   if [ "$QUICK" = 1 ]; then "$B/bench_dispersion" --repeat 3 -o "$OUT/bench_dispersion.csv"
   else "$B/bench_dispersion" --repeat 7 -o "$OUT/bench_dispersion.csv"; fi
+  say "dispersion against NumPy"
+  $PY "$HERE/bench_dispersion_numpy.py" --runs 5 --bench "$B/bench_dispersion" \
+    -o "$OUT/bench_dispersion_numpy.csv" > /dev/null
 fi
 if want static; then
   say static
@@ -93,4 +96,7 @@ for f in "$OUT"/bench_*.csv; do
   $PY "$HERE/limits.py" "$f" --gbs "$GBS1" --gbs2 "$GBS2" --gflops "$GF1"
 done
 $PY "$HERE/summary_plot.py" "$OUT" "$OUT/bench_summary.png"
+# the targets of issues 14 and 15 against these CSVs (docs/bench_acceptance.md for the committed run)
+if [ "$OUT" = notebooks-data ]; then MD=(--markdown docs/bench_acceptance.md); else MD=(); fi
+$PY "$HERE/acceptance.py" --data "$OUT" -o "$OUT/bench_acceptance.csv" "${MD[@]}"
 echo "run.sh: wrote $OUT/bench_*.csv and $OUT/bench_summary.png" >&2
