@@ -14,6 +14,7 @@ static inline double complex mfs_cmplx(double re, double im)
 }
 #endif
 #include <lapacke.h>
+#include <float.h>
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
@@ -713,6 +714,127 @@ static inline mfs_status solve1(double complex K, double complex M, int herm, do
   return isfinite(creal(*omega2)) && isfinite(cimag(*omega2)) ? MFS_OK : MFS_EDOMAIN;
 }
 
+/* The eigenvalues of a Hermitian n x n matrix, n <= 4, ascending: the
+ * triangle c >= r of A (row-major; the rest is not read) reduced by
+ * Householder reflections to a real symmetric tridiagonal one (the moduli of
+ * the complex subdiagonal: a diagonal unitary similarity), then the implicit
+ * QL iteration with Wilkinson's shift (EISPACK's tql1; LAPACK's zhegv does
+ * the same two steps, zhetrd and dsterf).  A fixed-size kernel: no call,
+ * no workspace, no threads (zhegv's calls into the threaded BLAS cost 20
+ * times the arithmetic at this size).  0, or -1 if an eigenvalue takes more
+ * than 30 iterations (not seen: the iteration converges cubically). */
+static int herm_small_eigvals(int n, const double complex *A, double *w)
+{
+  double complex B[16];
+  double d[4], e[4] = {0.0, 0.0, 0.0, 0.0};
+  for (int r = 0; r < n; r++)
+    for (int c = r; c < n; c++) {
+      B[r * n + c] = A[r * n + c];
+      B[c * n + r] = conj(A[r * n + c]);
+    }
+  for (int r = 0; r < n; r++)
+    B[r * n + r] = creal(B[r * n + r]);
+  for (int k = 0; k + 2 < n; k++) {
+    /* x = B[k+1..n)[k]; H = I - tau v v^H maps it to alpha e_1, |alpha| = |x| */
+    double xn2 = 0.0, tail = 0.0;
+    for (int i = k + 1; i < n; i++) {
+      double a2 = creal(B[i * n + k]) * creal(B[i * n + k]) + cimag(B[i * n + k]) * cimag(B[i * n + k]);
+      xn2 += a2;
+      tail += i > k + 1 ? a2 : 0.0;
+    }
+    double complex x0 = B[(k + 1) * n + k];
+    double ax0 = cabs(x0), xn = sqrt(xn2);
+    e[k] = xn;
+    if (tail == 0.0) /* already tridiagonal in this column */
+      continue;
+    double complex ph = ax0 > 0.0 ? x0 / ax0 : 1.0, v[4], p[4];
+    v[k + 1] = ph * (ax0 + xn);
+    for (int i = k + 2; i < n; i++)
+      v[i] = B[i * n + k];
+    const double tau = 1.0 / (xn * (xn + ax0)); /* 2 / |v|^2 */
+    /* B <- H B H on the trailing block: p = tau B v, q = p - (tau/2)(v^H p) v,
+     * B -= v q^H + q v^H */
+    double complex vp = 0.0;
+    for (int i = k + 1; i < n; i++) {
+      double complex t = 0.0;
+      for (int j = k + 1; j < n; j++)
+        t += B[i * n + j] * v[j];
+      p[i] = tau * t;
+      vp += conj(v[i]) * p[i];
+    }
+    const double half = 0.5 * tau * creal(vp);
+    for (int i = k + 1; i < n; i++)
+      p[i] -= half * v[i];
+    for (int i = k + 1; i < n; i++)
+      for (int j = k + 1; j < n; j++)
+        B[i * n + j] -= v[i] * conj(p[j]) + p[i] * conj(v[j]);
+  }
+  for (int i = 0; i < n; i++)
+    d[i] = creal(B[i * n + i]);
+  if (n >= 2)
+    e[n - 2] = cabs(B[(n - 1) * n + n - 2]);
+  e[n - 1] = 0.0;
+  /* implicit QL: e[i] couples d[i] and d[i + 1] */
+  for (int l = 0; l < n; l++) {
+    int m, iter = 0;
+    do {
+      for (m = l; m < n - 1; m++)
+        if (fabs(e[m]) <= DBL_EPSILON * (fabs(d[m]) + fabs(d[m + 1])))
+          break;
+      if (m == l)
+        break;
+      if (iter++ == 30)
+        return -1;
+      double g = (d[l + 1] - d[l]) / (2.0 * e[l]), r = sqrt(g * g + 1.0); /* |g| < 1 / eps */
+      g = d[m] - d[l] + e[l] / (g + copysign(r, g));
+      double s = 1.0, c = 1.0, p = 0.0;
+      int i;
+      for (i = m - 1; i >= l; i--) {
+        double f = s * e[i], b = c * e[i];
+        e[i + 1] = r = sqrt(f * f + g * g); /* no hypot: the symbols are O(1) to O(1e4) */
+        if (r == 0.0) { /* split: deflate and start again */
+          d[i + 1] -= p;
+          e[m] = 0.0;
+          break;
+        }
+        s = f / r;
+        c = g / r;
+        g = d[i + 1] - p;
+        r = (d[i] - g) * s + 2.0 * c * b;
+        p = s * r;
+        d[i + 1] = g + p;
+        g = c * r - b;
+      }
+      if (r == 0.0 && i >= l)
+        continue;
+      d[l] -= p;
+      e[l] = g;
+      e[m] = 0.0;
+    } while (m != l);
+  }
+  for (int i = 1; i < n; i++) { /* insertion sort */
+    double t = d[i];
+    int j = i;
+    for (; j > 0 && d[j - 1] > t; j--)
+      d[j] = d[j - 1];
+    d[j] = t;
+  }
+  for (int i = 0; i < n; i++)
+    w[i] = d[i];
+  return 0;
+}
+
+/* A diagonal mass with real positive entries (the lumped masses). */
+static int diagonal_mass(int n, const double complex *M)
+{
+  for (int r = 0; r < n; r++)
+    for (int c = 0; c < n; c++)
+      if (r == c ? !(creal(M[r * n + c]) > 0.0) || cimag(M[r * n + c]) != 0.0
+                 : M[r * n + c] != 0.0)
+        return 0;
+  return 1;
+}
+
 /* The generalized eigenvalues of K v = omega^2 M v (n x n), sorted by real
  * part; herm: K and M Hermitian.  A 2 x 2 problem with M = m I (one particle,
  * lumped mass) in closed form. */
@@ -750,6 +872,25 @@ static mfs_status eig_solve(int n, double complex *K, double complex *M, int her
     for (int i = 0; i < 2; i++)
       if (!isfinite(creal(omega2[i])) || !isfinite(cimag(omega2[i])))
         return MFS_EDOMAIN;
+    return MFS_OK;
+  }
+  if (herm && n <= 4 && diagonal_mass(n, M)) {
+    /* M^-1/2 K M^-1/2, Hermitian: the triangle zhegv reads below ('L' of the
+     * column-major array: c >= r here) */
+    double complex A[16];
+    double sq[4], wr[4];
+    for (int r = 0; r < n; r++)
+      sq[r] = sqrt(creal(M[r * n + r]));
+    for (int r = 0; r < n; r++)
+      for (int c = r; c < n; c++)
+        A[r * n + c] = K[r * n + c] / (sq[r] * sq[c]);
+    if (herm_small_eigvals(n, A, wr) != 0)
+      return MFS_EDOMAIN;
+    for (int i = 0; i < n; i++) {
+      if (!isfinite(wr[i]))
+        return MFS_EDOMAIN;
+      omega2[i] = wr[i];
+    }
     return MFS_OK;
   }
   /* The _work drivers on stack workspaces, column-major: no allocation (and
