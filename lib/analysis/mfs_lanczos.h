@@ -37,9 +37,11 @@
  * OMP_NUM_THREADS.  A block writes y for its own rows and its scatter
  * beyond its last row into its own band buffer; the second pass adds the
  * bands (in the order of the blocks) and does the step's vector work in the
- * same sweep (w = y - beta q_prev, the partial sums of q.w and w.w by
- * block, combined in block order); a third pass forms the next Lanczos
- * vector.  So a step reads the operator once plus about seven vectors.
+ * same sweep (w = y - beta q_prev, the partial sums of q.w, w.w and q.q by
+ * block, combined in block order, so that beta = ||w - alpha q|| comes from
+ * them); a third pass forms the next Lanczos vector.  So a step reads the
+ * operator once plus about seven vectors.  The 2 x 2 copy is written in one
+ * pass over K that also takes the first product from K's full rows.
  *
  * Consistent mass is not handled (MFS_ENOTSUP): mfs_eig_max (ARPACK mode 2
  * with CHOLMOD) stays the solver there. */
@@ -69,7 +71,8 @@ typedef struct {
 typedef struct {
   int matvecs;       /* products A x (= Lanczos steps) */
   double bound;      /* beta_k |s_k| / theta_k at the stop (the relative error estimate) */
-  double op_seconds; /* wall clock of the product passes (the rest: vector work, T_k's eigenvalue) */
+  double op_seconds; /* wall clock of the product passes (the rest: vector work, T_k's
+                        eigenvalue; with the 2 x 2 copy the first product is in the build) */
   double setup_seconds; /* wall clock of building the stored operator (in the total, not in
                            op_seconds) */
   int block;         /* 1 or 2: the storage's block size */
