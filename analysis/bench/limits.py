@@ -164,7 +164,7 @@ def main():
     if name == "bench_bandwidth":
         return 0
     bw = {1: a.gbs * 1e9, 2: a.gbs2 * 1e9}
-    if name in OWN:
+    if name in OWN or name.startswith("bench_lambda_"):  # bench_lambda_run2 ...: bench_lambda's rows
         if "limit_kind" not in cols:
             cols.append("limit_kind")
         for r in rows:
