@@ -28,6 +28,7 @@
 #include "mfs_closed.h"
 #include "mfs_dispersion.h"
 #include "mfs_eigen.h"
+#include "mfs_lanczos.h"
 #include "mfs_peigs.h"
 #include "mfs_bound.h"
 #include "mfs_spsolve.h"

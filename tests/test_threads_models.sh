@@ -5,7 +5,8 @@
 # bound and the Gershgorin pass combine their per-row values in the serial
 # order with the serial ties; lambda_max's product runs on the threads by a
 # fixed number of row blocks (lib/analysis/mfs_eigen.c, sym_csr: the same
-# sums for any thread count), ARPACK's iteration and the solvers' force loops
+# sums for any thread count; plain Lanczos, lib/analysis/mfs_lanczos.c, the same
+# way), ARPACK's iteration and the solvers' force loops
 # are serial, so lambda_max (eigs), the bounds (bound), the check
 # report and the time-domain runs come out the same bits: no column needs the
 # 1e-12 tolerance.  Files and, for check, its report on stdout.  Skipped (77)
@@ -63,6 +64,10 @@ same eigs-plane-strain eigs --dim 2 --nodes 25,25 --physics plane-strain --quadr
 # triangle, above lib/analysis/mfs_eigen.c's SYM_PARALLEL_MIN = 2^21)
 same eigs-parallel-product eigs --dim 2 --nodes 190,190 --physics plane-strain \
   --quadrature stress-quad
+# bound --certify: its estimate by plain Lanczos (lib/analysis/mfs_lanczos.c) on the same model,
+# the product and the vector passes on the threads (the same 8 row blocks), then the factorization
+same bound-certify-parallel bound --dim 2 --nodes 190,190 --physics plane-strain \
+  --quadrature stress-quad --certify
 # the bounds alone (streamed)
 same bound-2d bound --dim 2 --nodes 61,61 --physics plane-strain
 same bound-tri bound --dim 2 --nodes 41,41 --quadrature stress-tri --perturb 0.2

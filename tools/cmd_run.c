@@ -342,8 +342,9 @@ static void step_line(const scene *sc, const mfs_integrator *in, double dt)
   else if (i->used == MFS_DT_CERTIFIED)
     snprintf(rule, sizeof rule,
              "certified: sigma M - K positive definite, lambda_max <= %.6g 1/s^2 (proven; from "
-             "an ARPACK estimate %.10g 1/s^2 at arpack_tol %g, %d factorizations)",
-             i->lambda, i->lambda_arpack, i->arpack_tol, i->factorizations);
+             "a %s estimate %.10g 1/s^2 at tol %g, %d factorizations)",
+             i->lambda, i->estimator ? i->estimator : "Lanczos", i->lambda_arpack, i->arpack_tol,
+             i->factorizations);
   else if (i->proven)
     snprintf(rule, sizeof rule,
              "power: the element bound lambda = %.6g 1/s^2 (eq. 132, proven), below 1.05 times "

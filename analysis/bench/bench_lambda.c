@@ -11,12 +11,17 @@
  *   --ncv K      Lanczos vectors (default 20, as mfstab eigs)
  *   --ref L      the reference lambda_max (a run at --tol 0): error = |lambda - L| / L
  *   --certify    also the certified step from this run's Lanczos value
+ *   --lanczos    lambda_max by mfs_lanczos_max (plain Lanczos, tool mfstab-lanczos; --tol its
+ *                residual bound, --ncv ignored) instead of ARPACK's mfs_eig_max
  *   --export P   write P_K.mtx and P_M.mtx (Matrix Market) and stop
  *
  * One CSV row (two with --certify), columns:
  *   tool,rep,nodes,dofs,nnz_K,threads,tol,setup_s,seconds,matvecs,s_per_matvec,
  *   op_s_per_matvec,lambda_max,error,factorizations,dt_fraction,limit_kind,bytes_per_matvec,
  *   bandwidth_gbs,peak_gflops,limit_s,fraction,op_fraction,peak_rss_mb
+ * mfstab-lanczos: seconds = mfs_lanczos_max (building its storage included),
+ * bytes_per_matvec = what its storage's product reads (mfs_lanczos_info.bytes:
+ * 9 B per stored entry in 2 x 2 blocks), op_s_per_matvec its product passes.
  * mfstab: seconds = mfs_eig_max; op_s_per_matvec = the products alone
  * (info.op_seconds / matvecs); bytes_per_matvec = what the product reads and
  * writes at least once (matvec_bytes below); limit_s = matvecs *
@@ -59,7 +64,8 @@ int main(int argc, char **argv)
                     "[--export PREFIX] [--header]\n");
     return 2;
   }
-  int nx = atoi(argv[1]), ny = atoi(argv[2]), rep = 1, header = 0, certify = 0, ncv = 20;
+  int nx = atoi(argv[1]), ny = atoi(argv[2]), rep = 1, header = 0, certify = 0, ncv = 20,
+      lanczos = 0;
   double tol = 1e-6, ref = 0.0;
   const char *export_prefix = NULL;
   for (int i = 3; i < argc; i++) {
@@ -75,6 +81,8 @@ int main(int argc, char **argv)
       export_prefix = argv[++i];
     else if (strcmp(argv[i], "--certify") == 0)
       certify = 1;
+    else if (strcmp(argv[i], "--lanczos") == 0)
+      lanczos = 1;
     else if (strcmp(argv[i], "--header") == 0)
       header = 1;
     else {
@@ -124,11 +132,22 @@ int main(int argc, char **argv)
   mfs_eig_opts eo = {ncv, 0, tol};
   mfs_eig_info info;
   double lam = 0.0;
+  const char *tool = "mfstab";
   t0 = bench_now();
-  st = mfs_eig_max(&P, &eo, &lam, NULL, &info);
+  if (lanczos) {
+    mfs_lanczos_opts lo = {.tol = tol > 0.0 ? tol : 1e-14};
+    mfs_lanczos_info li;
+    st = mfs_lanczos_max(&P, &lo, &lam, &li);
+    info = (mfs_eig_info){.matvecs = li.matvecs, .op_seconds = li.op_seconds};
+    bytes = li.bytes; /* what its own storage reads (2 x 2 blocks on plane strain) */
+    tool = "mfstab-lanczos";
+  } else {
+    st = mfs_eig_max(&P, &eo, &lam, NULL, &info);
+  }
   double eig_s = bench_now() - t0;
   if (st != MFS_OK) {
-    fprintf(stderr, "bench_lambda: ARPACK: %s (info %d)\n", mfs_strerror(st), info.info);
+    fprintf(stderr, "bench_lambda: %s: %s (info %d)\n", lanczos ? "Lanczos" : "ARPACK",
+            mfs_strerror(st), info.info);
     return 1;
   }
   size_t n = m->n, nnz = m->K->ptr[n];
@@ -140,9 +159,9 @@ int main(int argc, char **argv)
   char err[32] = "";
   if (ref > 0.0)
     snprintf(err, sizeof err, "%.3g", fabs(lam - ref) / ref);
-  printf("mfstab,%d,%d,%zu,%zu,%d,%g,%.4f,%.4f,%d,%.6g,%.6g,%.15g,%s,,,bytes,%.0f,%.2f,,%.6g,"
+  printf("%s,%d,%d,%zu,%zu,%d,%g,%.4f,%.4f,%d,%.6g,%.6g,%.15g,%s,,,bytes,%.0f,%.2f,,%.6g,"
          "%.4f,%.4f,%.1f\n",
-         rep, nx * ny, n, nnz, bench_threads(), tol, setup_s, eig_s, info.matvecs,
+         tool, rep, nx * ny, n, nnz, bench_threads(), tol, setup_s, eig_s, info.matvecs,
          eig_s / info.matvecs, info.op_seconds / info.matvecs, lam, err, bytes, bps * 1e-9,
          limit, limit / eig_s, limit / info.op_seconds, bench_peak_mb());
   if (certify) {

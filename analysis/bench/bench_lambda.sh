@@ -20,7 +20,9 @@
 #   step's flop limit; default from bench_bandwidth.csv).
 #
 # CSV: bench_lambda.c's columns plus load_1min (of /proc/loadavg before the row);
-# tool is mfstab (threads 1, 2), mfstab-certify, scipy (eigsh; op_s_per_matvec
+# tool is mfstab (ARPACK, threads 1, 2), mfstab-lanczos (plain Lanczos,
+# lib/analysis/mfs_lanczos.h, threads 1, 2: the solver of the step's questions;
+# bytes_per_matvec = its own storage, 2 x 2 blocks), mfstab-certify, scipy (eigsh; op_s_per_matvec
 # = its A @ x alone; bytes_per_matvec = CSR of A with int32 indices: 12 B per
 # entry, 4 B per row pointer, x and y). The SciPy process runs with
 # LD_LIBRARY_PATH=/usr/lib/x86_64-linux-gnu/openblas-serial: Debian's SciPy
@@ -92,6 +94,7 @@ EOF
   for ((r = 1; r <= REPS; r++)); do
     for t in 1 2; do
       run_c "$BL" mfstab "$t" "$n" "$n" --tol "$TOL" --ref "$ref" --rep "$r"
+      run_c "$BL" mfstab-lanczos "$t" "$n" "$n" --tol "$TOL" --ref "$ref" --rep "$r" --lanczos
       [ -n "${BEFORE:-}" ] && run_c "$BEFORE" mfstab-before "$t" "$n" "$n" --tol "$TOL" --ref "$ref" --rep "$r"
     done
     l=$(load)

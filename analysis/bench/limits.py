@@ -98,6 +98,22 @@ def check(row, bw, gflops):
     return "none", None, s
 
 
+def table4(row, bw, gflops):
+    """bench_static table4: the MLS shape functions with their gradients at a
+    point with n neighbours, the operation count of the paper's Table II,
+    n C_w + 101 n + 32 flops (C_w = 20: a kernel with its gradient; the
+    moment matrix, its derivatives and the solves), at dgemm's one-thread
+    rate; the corrected derivatives (cd1) n C_w + 28 n + 10 flops, into the
+    extra column cd1_fraction.  Per point: the columns are microseconds per
+    point."""
+    n, tm, tk = f(row, "mean_neighbours"), f(row, "mls_us_per_point"), f(row, "cd1_us_per_point")
+    if n is None or not tm:
+        return "none", None, None
+    if tk:
+        row["cd1_fraction"] = f"{(20.0 * n + 28.0 * n + 10.0) / gflops / (tk * 1e-6):.4f}"
+    return "flops", (20.0 * n + 101.0 * n + 32.0) / gflops, tm * 1e-6
+
+
 def none(row, bw):
     for k in ("seconds", "total_s", "wall_s", "seconds_median", "eval_s"):
         if f(row, k) is not None:
@@ -148,7 +164,7 @@ def main():
     if name == "bench_bandwidth":
         return 0
     bw = {1: a.gbs * 1e9, 2: a.gbs2 * 1e9}
-    if name in OWN:
+    if name in OWN or name.startswith("bench_lambda_"):  # bench_lambda_run2 ...: bench_lambda's rows
         if "limit_kind" not in cols:
             cols.append("limit_kind")
         for r in rows:
@@ -158,6 +174,10 @@ def main():
         rule = RULES.get(name, none)
         if rule is check:
             rule = lambda r, b: check(r, b, a.gflops * 1e9)  # noqa: E731
+        if name == "bench_table4":
+            rule = lambda r, b: table4(r, b, a.gflops * 1e9)  # noqa: E731
+            if "cd1_fraction" not in cols:
+                cols.append("cd1_fraction")
         for c in ("limit_kind", "limit_s", "fraction"):
             if c not in cols:
                 cols.append(c)

@@ -5,6 +5,7 @@
 #include <string.h>
 
 #include "mfs_bound.h"
+#include "mfs_lanczos.h"
 #include "mfs_status.h"
 
 static int leapfrog(size_t n, double *u, double *v, double *a, double t1, double dt,
@@ -130,11 +131,19 @@ mfs_dt_info mfs_dt_info_init(mfs_dt_rule r)
 
 mfs_status mfs_dt_certify(const mfs_pencil *P, mfs_dt_info *info)
 {
-  mfs_eig_opts eo = {.tol = MFS_DT_ARPACK_TOL};
-  mfs_eig_info ei;
   double lam = NAN;
   info->arpack_tol = MFS_DT_ARPACK_TOL;
-  mfs_status st = mfs_eig_max(P, &eo, &lam, NULL, &ei);
+  mfs_status st;
+  if (P->m && !P->M) { /* the estimate needs no eigenvector and no more than ~1e-8 */
+    mfs_lanczos_opts lo = {.tol = MFS_DT_ARPACK_TOL};
+    info->estimator = "Lanczos";
+    st = mfs_lanczos_max(P, &lo, &lam, NULL);
+  } else {
+    mfs_eig_opts eo = {.tol = MFS_DT_ARPACK_TOL};
+    mfs_eig_info ei;
+    info->estimator = "ARPACK";
+    st = mfs_eig_max(P, &eo, &lam, NULL, &ei);
+  }
   if (st != MFS_OK)
     return st;
   info->lambda_arpack = lam;

@@ -66,9 +66,11 @@ static inline mfs_status mfs_explicit_set_dt(double *dt, double value, double dt
  *                        over the nonzeros; needs every m_i > 0;
  *   MFS_DT_CERTIFIED   lambda = sigma (1 + margin) of a Cholesky
  *                        factorization of sigma M - K (mfs_eig_certify_search,
- *                        from an ARPACK estimate at relative tolerance
- *                        MFS_DT_ARPACK_TOL): proven, within about 1e-6 of
- *                        lambda_max, one ARPACK run and a few factorizations;
+ *                        from a Lanczos estimate at relative tolerance
+ *                        MFS_DT_ARPACK_TOL: mfs_lanczos_max with a lumped
+ *                        mass, ARPACK's mfs_eig_max with a consistent one):
+ *                        proven, within about 1e-6 of lambda_max, one
+ *                        Lanczos run and a few factorizations;
  *   MFS_DT_POWER       the rule before these (mfs_step_lambda): 1.05 times
  *                        300 power iterations (from below; not proven), or
  *                        the element bound where it is proven and smaller.
@@ -98,19 +100,23 @@ typedef struct {
   double lambda_gershgorin; /* max_i sum_j |K_ij| / m_i */
   double lambda_certified;  /* sigma (1 + margin) of the certificate */
   double lambda_power;      /* the power-iteration estimate (before the 1.05) */
-  double lambda_arpack;     /* the ARPACK estimate the certificate started from */
-  double arpack_tol;        /* its tolerance (0: no ARPACK run) */
+  double lambda_arpack;     /* the Lanczos estimate the certificate started from (the name
+                               from when it was always ARPACK's) */
+  double arpack_tol;        /* its tolerance (0: no estimate run) */
+  const char *estimator;    /* who computed it: "Lanczos" (mfs_lanczos_max, lumped mass) or
+                               "ARPACK" (mfs_eig_max); NULL: none */
   int factorizations;       /* of the certificate */
   int power_iterations;     /* 0: none run */
   const char *fallback;     /* why the requested rule did not apply (static text), or NULL */
 } mfs_dt_info;
 
-/* The certified step of the pencil (K, lumped m > 0): an ARPACK estimate at
- * MFS_DT_ARPACK_TOL (info->lambda_arpack, arpack_tol), then
+/* The certified step of the pencil (K, lumped m > 0): a Lanczos estimate at
+ * MFS_DT_ARPACK_TOL (info->lambda_arpack, arpack_tol, estimator: plain
+ * Lanczos, mfs_lanczos_max, for a lumped mass; ARPACK otherwise), then
  * mfs_eig_certify_search from it (info->lambda_certified = sigma (1 +
  * margin), factorizations).  MFS_OK with lambda_certified finite; MFS_EDOMAIN
  * (no sigma certified, or no positive estimate); MFS_ENOMEM; other statuses of
- * mfs_eig_max (the caller falls back to another rule). */
+ * mfs_lanczos_max / mfs_eig_max (the caller falls back to another rule). */
 mfs_status mfs_dt_certify(const mfs_pencil *P, mfs_dt_info *info);
 
 /* An mfs_dt_info with nothing computed for rule r. */
