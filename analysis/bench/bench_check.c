@@ -21,7 +21,9 @@
  *       the perturbed SIDE x SIDE model (cubic MLS, D = 2, nodal, anti-plane,
  *       free): lambda_max by ARPACK at relative accuracy 1e-12 (what mfstab eigs
  *       does), against dt_certified the way mfstab bound --certify gets it
- *       (ARPACK at 1e-4, then the factorizations of sigma M - K)
+ *       (ARPACK at 1e-3, then the factorizations of sigma M - K from
+ *       sigma = lambda (1 + 4e-4), the gap 4 times larger after a failure;
+ *       --est-tol T and --gap G change the two)
  *       (--quadrature RULE for another rule), ARPACK first unless --certify-first;
  *       the factorization ordered by the particles' coordinates as mfstab does
  *       (mfs_model_coords), or by CHOLMOD's AMD with --amd, or by the order
@@ -159,9 +161,10 @@ static mfs_status arpack_full(const mfs_pencil *P, double *lam, int *mv, double 
   return st;
 }
 
-/* dt_certified as mfstab bound --certify gets it: ARPACK at 1e-4, then the
+static double est_tol = 1e-3, est_gap = 4e-4; /* mfstab bound --certify's */
+
+/* dt_certified as mfstab bound --certify gets it: ARPACK at est_tol, then the
  * factorizations; t[0..2], c[0]: total, estimate, factorizations (wall), total CPU. */
-static double est_tol = 1e-4, est_gap = 4e-4; /* mfstab bound --certify's */
 
 static mfs_status certified(const mfs_pencil *P, const double *x, int dim, int order,
                             mfs_certify_result *cr, double *t, double *c)
@@ -171,8 +174,8 @@ static mfs_status certified(const mfs_pencil *P, const double *x, int dim, int o
   double lan, t0 = now(), c0 = cpu();
   mfs_status st = mfs_eig_max(P, &quick, &lan, NULL, &info);
   double t1 = now();
-  mfs_certify_opts co = {.lambda_est = lan, .gap = est_gap, .coord = x, .coord_dim = x ? dim : 0,
-                         .order = order};
+  mfs_certify_opts co = {.lambda_est = lan, .gap = est_gap, .growth = 4.0, .coord = x,
+                         .coord_dim = x ? dim : 0, .order = order};
   if (st == MFS_OK)
     st = mfs_eig_certify_search(P, &co, cr);
   t[0] = now() - t0;

@@ -1090,21 +1090,23 @@ static void factor_rows(const cholmod_factor *L, int *kmax, int *wmax, long *wor
   *wmax = (int)(rk + colmax - 1);
 }
 
-/* cholmod_l_factorize, with CHOLMOD's own OpenMP loops on the threads the
- * library has.  CHOLMOD 3 (SuiteSparse 5) runs loops of its supernodal
+/* cholmod_l_super_numeric with CHOLMOD's own OpenMP loops on the calling
+ * thread.  CHOLMOD 3 (SuiteSparse 5) runs loops of its supernodal
  * factorization (clearing its map, zeroing and assembling supernodes) in
  * OpenMP regions of CHOLMOD_OMP_NUM_THREADS = 4 threads, a constant of its
- * build that OMP_NUM_THREADS does not change: on one thread (OMP_NUM_THREADS=1)
- * the wake-ups of those teams took 40% of a factorization at 10^5 particles
- * (analysis/bench/bench_check.sh).  With one thread and outside a parallel
- * region of the caller, the maximum of active levels is 0 during the call, so
- * that every region of CHOLMOD runs on the calling thread; restored after.
- * The BLAS (OpenBLAS) keeps its own threads (OPENBLAS_NUM_THREADS). */
+ * build that OMP_NUM_THREADS does not change.  At 10^5 particles (2D, cubic
+ * MLS, analysis/bench/bench_check.sh) the wake-ups of those teams took 40%
+ * of a factorization under OMP_NUM_THREADS=1, and at 2 threads the numeric
+ * factorization took 1.5-2.2 s with them, 1.0 s without.  Outside a parallel
+ * region of the caller the maximum of active levels is 0 during the call, so
+ * that every region of CHOLMOD runs on this thread (restored after; inside a
+ * caller's region they are nested and inactive already).  The flops are in
+ * the BLAS, which keeps its own threads (OPENBLAS_NUM_THREADS). */
 static int cert_numeric(cholmod_sparse *S, cholmod_factor *L, cholmod_common *c)
 {
   double zero[2] = {0.0, 0.0};
 #ifdef _OPENMP
-  int serial = mfs_omp_threads() <= 1 && !omp_in_parallel(), levels = 0;
+  int serial = !omp_in_parallel(), levels = 0;
   if (serial) {
     levels = omp_get_max_active_levels();
     omp_set_max_active_levels(0);
