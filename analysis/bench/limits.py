@@ -95,7 +95,7 @@ def check(row, bw, gflops):
     one-thread dgemm rate; the other phases have no limit derived."""
     g, s = f(row, "gflop"), f(row, "seconds")
     if row.get("phase") in ("factorizations", "numeric") and g:
-        return "flops", g / gflops, s
+        return "flops", g * 1e9 / gflops, s  # gflop: 10^9 flops
     return "none", None, s
 
 

@@ -126,6 +126,41 @@ static void info_reset(mfs_eig_info *info)
 /* ------------------------------------------------------------------ */
 /* CHOLMOD: factorizations of symmetric positive definite matrices     */
 
+/* CHOLMOD's own OpenMP loops on the calling thread.  CHOLMOD 3 (SuiteSparse 5)
+ * runs loops of its supernodal factorization (clearing its map, zeroing and
+ * assembling supernodes) in OpenMP regions of CHOLMOD_OMP_NUM_THREADS = 4
+ * threads, a constant of its build that OMP_NUM_THREADS does not change.  At
+ * 10^5 particles (2D, cubic MLS, analysis/bench/bench_check.sh) the wake-ups
+ * of those teams took 40% of a factorization under OMP_NUM_THREADS=1, and at
+ * 2 threads the numeric factorization took 1.5-2.2 s with them, 1.0 s
+ * without.  Outside a parallel region of the caller the maximum of active
+ * levels is 0 between chol_serial_begin and chol_serial_end, so that every
+ * region of CHOLMOD runs on this thread (inside a caller's region they are
+ * nested and inactive already).  The loops are independent entry by entry:
+ * the factor is the same.  The flops are in the BLAS, which keeps its own
+ * threads (OPENBLAS_NUM_THREADS). */
+static int chol_serial_begin(void)
+{
+#ifdef _OPENMP
+  if (!omp_in_parallel()) {
+    int levels = omp_get_max_active_levels();
+    omp_set_max_active_levels(0);
+    return levels;
+  }
+#endif
+  return -1;
+}
+
+static void chol_serial_end(int levels)
+{
+#ifdef _OPENMP
+  if (levels >= 0)
+    omp_set_max_active_levels(levels);
+#else
+  (void)levels;
+#endif
+}
+
 typedef struct {
   cholmod_common c;
   int started;
@@ -194,7 +229,9 @@ static int chol_factor(chol_solver *s, const mfs_csr *A, const mfs_csr *B, const
   s->L = cholmod_l_analyze(F, c);
   if (!s->L)
     goto done;
+  int levels = chol_serial_begin();
   int ok = cholmod_l_factorize(F, s->L, c);
+  chol_serial_end(levels);
   if (ok && c->status == CHOLMOD_OK && !s->L->is_super && !s->L->is_ll) {
     /* a simplicial LDL' factorization succeeds on indefinite matrices:
      * positive definiteness is D > 0 (the diagonal of the factor) */
@@ -1090,33 +1127,14 @@ static void factor_rows(const cholmod_factor *L, int *kmax, int *wmax, long *wor
   *wmax = (int)(rk + colmax - 1);
 }
 
-/* cholmod_l_super_numeric with CHOLMOD's own OpenMP loops on the calling
- * thread.  CHOLMOD 3 (SuiteSparse 5) runs loops of its supernodal
- * factorization (clearing its map, zeroing and assembling supernodes) in
- * OpenMP regions of CHOLMOD_OMP_NUM_THREADS = 4 threads, a constant of its
- * build that OMP_NUM_THREADS does not change.  At 10^5 particles (2D, cubic
- * MLS, analysis/bench/bench_check.sh) the wake-ups of those teams took 40%
- * of a factorization under OMP_NUM_THREADS=1, and at 2 threads the numeric
- * factorization took 1.5-2.2 s with them, 1.0 s without.  Outside a parallel
- * region of the caller the maximum of active levels is 0 during the call, so
- * that every region of CHOLMOD runs on this thread (restored after; inside a
- * caller's region they are nested and inactive already).  The flops are in
- * the BLAS, which keeps its own threads (OPENBLAS_NUM_THREADS). */
+/* cholmod_l_super_numeric of S into L, CHOLMOD's loops on this thread
+ * (chol_serial_begin). */
 static int cert_numeric(cholmod_sparse *S, cholmod_factor *L, cholmod_common *c)
 {
   double zero[2] = {0.0, 0.0};
-#ifdef _OPENMP
-  int serial = !omp_in_parallel(), levels = 0;
-  if (serial) {
-    levels = omp_get_max_active_levels();
-    omp_set_max_active_levels(0);
-  }
-#endif
+  int levels = chol_serial_begin();
   int ok = cholmod_l_super_numeric(S, NULL, zero, L, c);
-#ifdef _OPENMP
-  if (serial)
-    omp_set_max_active_levels(levels);
-#endif
+  chol_serial_end(levels);
   return ok;
 }
 
