@@ -138,7 +138,9 @@ static void info_reset(mfs_eig_info *info)
  * region of CHOLMOD runs on this thread (inside a caller's region they are
  * nested and inactive already).  The loops are independent entry by entry:
  * the factor is the same.  The flops are in the BLAS, which keeps its own
- * threads (OPENBLAS_NUM_THREADS). */
+ * threads (OPENBLAS_NUM_THREADS).  The setting is process-wide in libgomp:
+ * parallel regions that another thread of the caller starts meanwhile run on
+ * one thread (docs/design.md). */
 static int chol_serial_begin(void)
 {
 #ifdef _OPENMP
