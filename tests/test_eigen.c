@@ -156,6 +156,30 @@ static void check_max(const mfs_model_spec *s, const char *what)
       CHECK(st == MFS_OK && rg.ok == (k == 0), "%s: geometric order at %.3f lambda_max: ok %d",
             what, at[k], rg.ok);
     }
+    /* a search through failures: the factor reused after a failed factorization (its
+     * analysis and permuted matrix built once); the bracket holds lambda_max */
+    mfs_certify_opts cf = {.lambda_est = 0.99 * ref, .gap = 2e-3, .growth = 2.0, .coord = x,
+                           .coord_dim = m->p->dim, .refine = 3};
+    st = mfs_eig_certify_search(&P, &cf, &rg);
+    CHECK(st == MFS_OK && rg.ok && rg.factorizations > 2 && rg.sigma_failed < ref &&
+            rg.sigma_failed > 0.99 * ref && rg.lambda_upper >= ref * (1.0 - 1e-13) &&
+            rg.lambda_upper <= 1.02 * ref,
+          "%s: search through failures: ok %d after %d, failed at %.6f, upper %.6f lambda_max",
+          what, rg.ok, rg.factorizations, rg.sigma_failed / ref, rg.lambda_upper / ref);
+    CHECK(rg.supernodes > 0 && rg.order_s >= 0.0 && rg.analyze_s >= 0.0 && rg.numeric_s >= 0.0,
+          "%s: search statistics: %d supernodes, %g %g %g s", what, rg.supernodes, rg.order_s,
+          rg.analyze_s, rg.numeric_s);
+    /* CHOLMOD's orders, asked for: 1.001 and 0.999 lambda_max as with the default */
+    const int orders[3] = {MFS_CERT_ORDER_AMD, MFS_CERT_ORDER_METIS, MFS_CERT_ORDER_NESDIS};
+    for (int o = 0; o < 3; o++)
+      for (int k = 0; k < 2; k++) {
+        mfs_certify_opts c1 = {.lambda_est = at[k] * ref, .gap = 1e-300, .max_factorizations = 1,
+                               .coord = x, .coord_dim = m->p->dim, .order = orders[o]};
+        st = mfs_eig_certify_search(&P, &c1, &rg);
+        CHECK(st == MFS_OK && rg.ok == (k == 0) && (k == 1 || rg.margin < 1e-10),
+              "%s: order %d at %.3f lambda_max: ok %d margin %.3g", what, orders[o], at[k], rg.ok,
+              rg.margin);
+      }
     for (size_t i = 0; i < m->n; i++) /* the coordinates are the particles' */
       for (int d = 0; d < m->p->dim; d++)
         if (x[i * (size_t)m->p->dim + (size_t)d] !=

@@ -21,10 +21,13 @@
  *       the perturbed SIDE x SIDE model (cubic MLS, D = 2, nodal, anti-plane,
  *       free): lambda_max by ARPACK at relative accuracy 1e-12 (what mfstab eigs
  *       does), against dt_certified the way mfstab bound --certify gets it
- *       (ARPACK at 1e-4, then the factorizations of sigma M - K)
+ *       (ARPACK at 1e-3, then the factorizations of sigma M - K from
+ *       sigma = lambda (1 + 4e-4), the gap 4 times larger after a failure;
+ *       --est-tol T and --gap G change the two)
  *       (--quadrature RULE for another rule), ARPACK first unless --certify-first;
  *       the factorization ordered by the particles' coordinates as mfstab does
- *       (mfs_model_coords), or by CHOLMOD's AMD with --amd
+ *       (mfs_model_coords), or by CHOLMOD's AMD with --amd, or by the order
+ *       --order default|geometric|amd|metis|nesdis asks for (mfs_certify_opts.order)
  *       CSV: job,particles,mass,quadrature,assembly_s,arpack_s,arpack_matvecs,lambda_max,
  *            certify_s,lanczos_s,factor_s,factorizations,factor_nnz,factor_gflops,
  *            sigma_certified,certified_fraction,time_ratio,cpu_ratio,peak_rss_mb
@@ -158,17 +161,21 @@ static mfs_status arpack_full(const mfs_pencil *P, double *lam, int *mv, double 
   return st;
 }
 
-/* dt_certified as mfstab bound --certify gets it: ARPACK at 1e-4, then the
+static double est_tol = 1e-3, est_gap = 4e-4; /* mfstab bound --certify's */
+
+/* dt_certified as mfstab bound --certify gets it: ARPACK at est_tol, then the
  * factorizations; t[0..2], c[0]: total, estimate, factorizations (wall), total CPU. */
-static mfs_status certified(const mfs_pencil *P, const double *x, int dim, mfs_certify_result *cr,
-                            double *t, double *c)
+
+static mfs_status certified(const mfs_pencil *P, const double *x, int dim, int order,
+                            mfs_certify_result *cr, double *t, double *c)
 {
   mfs_eig_info info;
-  mfs_eig_opts quick = {0, 0, 1e-4};
+  mfs_eig_opts quick = {0, 0, est_tol};
   double lan, t0 = now(), c0 = cpu();
   mfs_status st = mfs_eig_max(P, &quick, &lan, NULL, &info);
   double t1 = now();
-  mfs_certify_opts co = {.lambda_est = lan, .gap = 4e-4, .coord = x, .coord_dim = x ? dim : 0};
+  mfs_certify_opts co = {.lambda_est = lan, .gap = est_gap, .growth = 4.0, .coord = x,
+                         .coord_dim = x ? dim : 0, .order = order};
   if (st == MFS_OK)
     st = mfs_eig_certify_search(P, &co, cr);
   t[0] = now() - t0;
@@ -178,8 +185,10 @@ static mfs_status certified(const mfs_pencil *P, const double *x, int dim, mfs_c
   return st;
 }
 
+static const char *const order_name[] = {"default", "geometric", "amd", "metis", "nesdis"};
+
 static int certify(int side, double perturb, int consistent, const char *rule, int header,
-                   int cert_first, int amd)
+                   int cert_first, int amd, int order)
 {
   mfs_model_spec s = {.disc = model_disc(side, perturb)};
   s.disc.consistent_mass = consistent;
@@ -204,13 +213,13 @@ static int certify(int side, double perturb, int consistent, const char *rule, i
   int mv = 0;
   /* both on the same model in one process, in the order asked (the script alternates it) */
   if (cert_first) {
-    st = certified(&P, x, m->p->dim, &cr, tc, &cc);
+    st = certified(&P, x, m->p->dim, order, &cr, tc, &cc);
     if (st == MFS_OK)
       st = arpack_full(&P, &lam, &mv, &ta, &ca);
   } else {
     st = arpack_full(&P, &lam, &mv, &ta, &ca);
     if (st == MFS_OK)
-      st = certified(&P, x, m->p->dim, &cr, tc, &cc);
+      st = certified(&P, x, m->p->dim, order, &cr, tc, &cc);
   }
   mfs_free(x);
   if (st != MFS_OK || !cr.ok)
@@ -218,13 +227,15 @@ static int certify(int side, double perturb, int consistent, const char *rule, i
   if (header)
     puts("job,particles,mass,quadrature,assembly_s,arpack_s,arpack_matvecs,lambda_max,certify_s,"
          "lanczos_s,factor_s,factorizations,factor_nnz,factor_gflops,sigma_certified,certified_fraction,"
-         "time_ratio,cpu_ratio,peak_rss_mb,arpack_cpu_s,certify_cpu_s,certify_first");
+         "time_ratio,cpu_ratio,peak_rss_mb,arpack_cpu_s,certify_cpu_s,certify_first,order_s,"
+         "analyze_s,numeric_s,supernodes,order,threads");
   printf("certify,%zu,%s,%s,%.4f,%.4f,%d,%.12g,%.4f,%.4f,%.4f,%d,%.0f,%.3f,%.12g,%.8f,%.4f,%.4f,"
-         "%.1f,%.4f,%.4f,%d\n",
+         "%.1f,%.4f,%.4f,%d,%.4f,%.4f,%.4f,%d,%s,%s\n",
          m->p->n, consistent ? "consistent" : "lumped", s.disc.quadrature->name, t1 - t0, ta, mv,
          lam, tc[0], tc[1], tc[2], cr.factorizations, cr.factor_nnz, cr.flops * 1e-9,
          cr.lambda_upper, sqrt(lam / cr.lambda_upper), tc[0] / ta, cc / ca, peak_mb(), ca, cc,
-         cert_first);
+         cert_first, cr.order_s, cr.analyze_s, cr.numeric_s, cr.supernodes, order_name[order],
+         getenv("OMP_NUM_THREADS") ? getenv("OMP_NUM_THREADS") : "");
   mfs_model_free(m);
   return 0;
 }
@@ -237,7 +248,7 @@ int main(int argc, char **argv)
     return 2;
   }
   double perturb = 0.2;
-  int novol = 0, header = 0, consistent = 0, cert_first = 0, amd = 0;
+  int novol = 0, header = 0, consistent = 0, cert_first = 0, amd = 0, order = 0;
   const char *rule = "nodal";
   for (int i = 3; i < argc; i++) {
     if (strcmp(argv[i], "--perturb") == 0 && i + 1 < argc)
@@ -250,6 +261,22 @@ int main(int argc, char **argv)
       cert_first = 1;
     else if (strcmp(argv[i], "--amd") == 0)
       amd = 1;
+    else if (strcmp(argv[i], "--est-tol") == 0 && i + 1 < argc)
+      est_tol = atof(argv[++i]);
+    else if (strcmp(argv[i], "--gap") == 0 && i + 1 < argc)
+      est_gap = atof(argv[++i]);
+    else if (strcmp(argv[i], "--order") == 0 && i + 1 < argc) {
+      const char *o = argv[++i];
+      order = -1;
+      for (int k = 0; k < 5; k++)
+        if (strcmp(o, order_name[k]) == 0)
+          order = k;
+      if (order < 0) {
+        fprintf(stderr, "bench_check: --order %s: not default, geometric, amd, metis, nesdis\n", o);
+        return 2;
+      }
+      amd = order >= MFS_CERT_ORDER_AMD;
+    }
     else if (strcmp(argv[i], "--quadrature") == 0 && i + 1 < argc)
       rule = argv[++i];
     else if (strcmp(argv[i], "--mass") == 0 && i + 1 < argc)
@@ -260,7 +287,7 @@ int main(int argc, char **argv)
   if (strcmp(argv[1], "gershgorin") == 0 && argc >= 4)
     return gershgorin(argv[2], atof(argv[3]), rule, header);
   if (strcmp(argv[1], "certify") == 0)
-    return certify(atoi(argv[2]), perturb, consistent, rule, header, cert_first, amd);
+    return certify(atoi(argv[2]), perturb, consistent, rule, header, cert_first, amd, order);
   fprintf(stderr, "bench_check: unknown job %s\n", argv[1]);
   return 2;
 }

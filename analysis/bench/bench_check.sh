@@ -16,10 +16,13 @@
 # same files in the same repetitions, alternating with this build, labelled blas=base
 # (its bench_check has no per-phase CPU and runs ARPACK first).
 # One core: the library is single-threaded here, OMP_NUM_THREADS=1 keeps CHOLMOD and
-# OpenBLAS on one thread.  BLAS_DIR=DIR runs the certification rows again with
+# OpenBLAS on one thread.  THREADS2=1 (the default) runs the certification rows at
+# 10^5 again with OMP_NUM_THREADS=2 OPENBLAS_NUM_THREADS=2 (both ARPACK and the
+# certification, threads = 2).  BLAS_DIR=DIR runs the certification rows again with
 # LD_LIBRARY_PATH=DIR, labelled blas=DIR.
 #   analysis/bench/bench_check.sh [BUILD_DIR]      (default: build; REPS=5)
-# CSV: job,particles,variant,phase,stat,seconds,cpu_seconds,value,peak_rss_mb,blas,load_1min
+# CSV: job,particles,variant,phase,stat,seconds,cpu_seconds,value,peak_rss_mb,blas,load_1min,
+#      gflop,threads
 #   stat: rep1..repN (one repetition; load_1min: /proc/loadavg's first field before it) or
 #   min, median, max over the repetitions (of seconds, cpu_seconds and value separately;
 #   load_1min then the median of the repetitions').
@@ -30,6 +33,12 @@
 #   value the entries of the factor.  peak_rss_mb: the process's peak.
 #   gflop: factorizations: the flops of all of them (10^9; CHOLMOD's count), the work
 #   that analysis/bench/limits.py states against the dgemm rate.
+#   certify phases: assembly, arpack_lambda_max, lanczos (the estimate, at bench_check's
+#   --est-tol, mfstab bound --certify's 1e-3), factorizations (all that follows the
+#   estimate), and within it order (the geometric nested dissection), analysis
+#   (the symbolic analysis and the permuted pattern, value: supernodes) and numeric
+#   (the numeric factorizations, forming sigma M - K included); dt_certified, time_ratio.
+#   threads: OMP_NUM_THREADS of the row (ARPACK and the certification alike).
 set -euo pipefail
 export OMP_NUM_THREADS=1 OPENBLAS_NUM_THREADS=1
 BUILD=${1:-build}
@@ -44,7 +53,7 @@ work=$(mktemp -d "${TMPDIR:-/tmp}/bench_check.XXXXXX")
 trap 'rm -rf "$work"' EXIT
 mkdir -p "$(dirname "$OUT")"
 tmp="$work/raw.csv"
-echo "job,particles,variant,phase,stat,seconds,cpu_seconds,value,peak_rss_mb,blas,load_1min,gflop" >"$tmp"
+echo "job,particles,variant,phase,stat,seconds,cpu_seconds,value,peak_rss_mb,blas,load_1min,gflop,threads" >"$tmp"
 load() { cut -d' ' -f1 /proc/loadavg; }
 
 # 1. 10^6 particles
@@ -83,19 +92,26 @@ certify_one() { # BENCH LABEL SIDE REP QUAD PERTURB MASS [--certify-first]
   local b=$1 label=$2 side=$3 r=$4 ld row var st
   ld=$(load)
   row=$(env "${envs[@]}" "$b" certify "$side" --quadrature "$5" --perturb "$6" --mass "$7" ${8:-})
-  IFS=, read -r _ n mass q asm ars mv lam cs ls fs nf fnnz gf sig frac tr cr rss acpu ccpu cf <<<"$row"
+  IFS=, read -r _ n mass q asm ars mv lam cs ls fs nf fnnz gf sig frac tr cr rss acpu ccpu cf \
+    os as ns nsup _ <<<"$row"
   var="$q-perturb$6-$7"
   st="rep$r"
-  echo "certify,$n,$var,assembly,$st,$asm,,,$rss,$label,$ld" >>"$tmp"
-  echo "certify,$n,$var,arpack_lambda_max,$st,$ars,${acpu:-},$lam,$rss,$label,$ld" >>"$tmp"
-  echo "certify,$n,$var,lanczos_1e-4,$st,$ls,,,$rss,$label,$ld" >>"$tmp"
-  echo "certify,$n,$var,factorizations,$st,$fs,,$nf,$rss,$label,$ld,$(awk -v a="$nf" -v b="$gf" 'BEGIN { print a * b }')" >>"$tmp"
-  echo "certify,$n,$var,dt_certified,$st,$cs,${ccpu:-},$frac,$rss,$label,$ld" >>"$tmp"
-  echo "certify,$n,$var,time_ratio,$st,$tr,$cr,$fnnz,$rss,$label,$ld" >>"$tmp"
+  local th=${threads:-1}
+  echo "certify,$n,$var,assembly,$st,$asm,,,$rss,$label,$ld,,$th" >>"$tmp"
+  echo "certify,$n,$var,arpack_lambda_max,$st,$ars,${acpu:-},$lam,$rss,$label,$ld,,$th" >>"$tmp"
+  echo "certify,$n,$var,lanczos,$st,$ls,,,$rss,$label,$ld,,$th" >>"$tmp"
+  echo "certify,$n,$var,factorizations,$st,$fs,,$nf,$rss,$label,$ld,$(awk -v a="$nf" -v b="$gf" 'BEGIN { print a * b }'),$th" >>"$tmp"
+  if [ -n "${ns:-}" ]; then
+    echo "certify,$n,$var,order,$st,$os,,,$rss,$label,$ld,,$th" >>"$tmp"
+    echo "certify,$n,$var,analysis,$st,$as,,$nsup,$rss,$label,$ld,,$th" >>"$tmp"
+    echo "certify,$n,$var,numeric,$st,$ns,,$nf,$rss,$label,$ld,$(awk -v a="$nf" -v b="$gf" 'BEGIN { print a * b }'),$th" >>"$tmp"
+  fi
+  echo "certify,$n,$var,dt_certified,$st,$cs,${ccpu:-},$frac,$rss,$label,$ld,,$th" >>"$tmp"
+  echo "certify,$n,$var,time_ratio,$st,$tr,$cr,$fnnz,$rss,$label,$ld,,$th" >>"$tmp"
 }
-certify_rows() { # LABEL
+certify_rows() { # LABEL [SIDES]
   local label=$1
-  for side in 100 316; do
+  for side in ${2:-100 316}; do
     for r in $(seq 1 "$REPS"); do
       first=$([ $((r % 2)) = 0 ] && echo --certify-first || true)
       for v in "nodal 0.2 lumped" "gauss2 0 lumped" "nodal 0.2 consistent"; do
@@ -112,7 +128,18 @@ certify_rows() { # LABEL
   done
 }
 envs=(MFS_BENCH=1)
+threads=1
 certify_rows default
+if [ "${THREADS2:-1}" = 1 ]; then
+  envs=(MFS_BENCH=1 OMP_NUM_THREADS=2 OPENBLAS_NUM_THREADS=2)
+  threads=2
+  BB0=$BB
+  BB=
+  certify_rows default 316
+  BB=$BB0
+  envs=(MFS_BENCH=1)
+  threads=1
+fi
 if [ -n "${BLAS_DIR:-}" ]; then
   envs=(LD_LIBRARY_PATH="$BLAS_DIR")
   BB=
@@ -124,10 +151,11 @@ fi
 import csv, statistics, sys
 rows = list(csv.DictReader(open(sys.argv[1])))
 cols = ["job", "particles", "variant", "phase", "stat", "seconds", "cpu_seconds", "value",
-        "peak_rss_mb", "blas", "load_1min", "gflop"]
+        "peak_rss_mb", "blas", "load_1min", "gflop", "threads"]
 groups = {}
 for r in rows:
-    groups.setdefault((r["job"], r["particles"], r["variant"], r["phase"], r["blas"]), []).append(r)
+    groups.setdefault((r["job"], r["particles"], r["variant"], r["phase"], r["blas"],
+                       r.get("threads") or ""), []).append(r)
 with open(sys.argv[2], "w", newline="") as f:
     w = csv.writer(f, lineterminator="\n")
     w.writerow(cols)
@@ -141,7 +169,7 @@ with open(sys.argv[2], "w", newline="") as f:
             return v
         for stat, fn in (("min", min), ("median", statistics.median), ("max", max)):
             out = dict(zip(["job", "particles", "variant", "phase"], key[:4]))
-            out["stat"], out["blas"] = stat, key[4]
+            out["stat"], out["blas"], out["threads"] = stat, key[4], key[5]
             for c in ("seconds", "cpu_seconds", "value", "peak_rss_mb", "gflop"):
                 v = col(c)
                 out[c] = "%.10g" % fn(v) if v else ""

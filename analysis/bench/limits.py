@@ -90,11 +90,12 @@ def solver(row, bw):
 
 
 def check(row, bw, gflops):
-    """bench_check: the factorizations of sigma M - K, CHOLMOD's flops at the
-    dgemm rate; the other phases have no limit derived."""
+    """bench_check: the factorizations of sigma M - K (all that follows the
+    estimate, and the numeric factorizations alone), CHOLMOD's flops at the
+    one-thread dgemm rate; the other phases have no limit derived."""
     g, s = f(row, "gflop"), f(row, "seconds")
-    if row.get("phase") == "factorizations" and g:
-        return "flops", g / gflops, s
+    if row.get("phase") in ("factorizations", "numeric") and g:
+        return "flops", g * 1e9 / gflops, s  # gflop: 10^9 flops
     return "none", None, s
 
 

@@ -126,6 +126,43 @@ static void info_reset(mfs_eig_info *info)
 /* ------------------------------------------------------------------ */
 /* CHOLMOD: factorizations of symmetric positive definite matrices     */
 
+/* CHOLMOD's own OpenMP loops on the calling thread.  CHOLMOD 3 (SuiteSparse 5)
+ * runs loops of its supernodal factorization (clearing its map, zeroing and
+ * assembling supernodes) in OpenMP regions of CHOLMOD_OMP_NUM_THREADS = 4
+ * threads, a constant of its build that OMP_NUM_THREADS does not change.  At
+ * 10^5 particles (2D, cubic MLS, analysis/bench/bench_check.sh) the wake-ups
+ * of those teams took 40% of a factorization under OMP_NUM_THREADS=1, and at
+ * 2 threads the numeric factorization took 1.5-2.2 s with them, 1.0 s
+ * without.  Outside a parallel region of the caller the maximum of active
+ * levels is 0 between chol_serial_begin and chol_serial_end, so that every
+ * region of CHOLMOD runs on this thread (inside a caller's region they are
+ * nested and inactive already).  The loops are independent entry by entry:
+ * the factor is the same.  The flops are in the BLAS, which keeps its own
+ * threads (OPENBLAS_NUM_THREADS).  The setting is process-wide in libgomp:
+ * parallel regions that another thread of the caller starts meanwhile run on
+ * one thread (docs/design.md). */
+static int chol_serial_begin(void)
+{
+#ifdef _OPENMP
+  if (!omp_in_parallel()) {
+    int levels = omp_get_max_active_levels();
+    omp_set_max_active_levels(0);
+    return levels;
+  }
+#endif
+  return -1;
+}
+
+static void chol_serial_end(int levels)
+{
+#ifdef _OPENMP
+  if (levels >= 0)
+    omp_set_max_active_levels(levels);
+#else
+  (void)levels;
+#endif
+}
+
 typedef struct {
   cholmod_common c;
   int started;
@@ -194,7 +231,9 @@ static int chol_factor(chol_solver *s, const mfs_csr *A, const mfs_csr *B, const
   s->L = cholmod_l_analyze(F, c);
   if (!s->L)
     goto done;
+  int levels = chol_serial_begin();
   int ok = cholmod_l_factorize(F, s->L, c);
+  chol_serial_end(levels);
   if (ok && c->status == CHOLMOD_OK && !s->L->is_super && !s->L->is_ll) {
     /* a simplicial LDL' factorization succeeds on indefinite matrices:
      * positive definiteness is D > 0 (the diagonal of the factor) */
@@ -850,24 +889,174 @@ mfs_status mfs_eig_is_null(const mfs_pencil *P, const double *r, double lambda_m
 
 typedef struct {
   cholmod_common c;
-  cholmod_sparse *Ku, *Mu;
   cholmod_factor *L;
+  cholmod_sparse *S;      /* the lower triangle of Q (sigma M - K) Q', Q L's order */
+  double *kx, *mx;        /* the entries of K and M in the pattern of S */
   SuiteSparse_long *perm; /* a geometric order, or NULL: CHOLMOD's */
+  double order_s, analyze_s, numeric_s; /* wall seconds, summed */
 } cert_ws;
 
 static void cert_free(cert_ws *w)
 {
   mfs_free(w->perm);
+  mfs_free(w->kx);
+  mfs_free(w->mx);
   cholmod_l_free_factor(&w->L, &w->c);
-  cholmod_l_free_sparse(&w->Ku, &w->c);
-  cholmod_l_free_sparse(&w->Mu, &w->c);
+  cholmod_l_free_sparse(&w->S, &w->c);
   cholmod_l_finish(&w->c);
 }
 
 enum { CERT_AMD_MAX = 300000 };
 
-/* x (n x dim, or NULL): the unknowns' coordinates, for a geometric order. */
-static int cert_init(cert_ws *w, const mfs_pencil *P, const double *x, int dim)
+/* The pattern of the upper triangle of K + M (M: P->M, or the diagonal of
+ * the lumped mass), sorted columns, for the symbolic analysis; mark (n) is
+ * workspace. */
+static cholmod_sparse *cert_pattern(const mfs_pencil *P, SuiteSparse_long *mark, cholmod_common *c)
+{
+  const mfs_csr *K = P->K, *M = P->M;
+  size_t n = K->nrow, nnz = 0;
+  for (size_t j = 0; j < n; j++)
+    mark[j] = -1;
+  for (int pass = 0; pass < 2; pass++) {
+    cholmod_sparse *A = NULL;
+    SuiteSparse_long *Ap = NULL, *Ai = NULL;
+    if (pass == 1) {
+      A = cholmod_l_allocate_sparse(n, n, nnz, 0, 1, 1, CHOLMOD_PATTERN, c);
+      if (!A)
+        return NULL;
+      Ap = A->p;
+      Ai = A->i;
+      for (size_t j = 0; j < n; j++)
+        mark[j] = -1;
+    }
+    size_t pos = 0;
+    for (size_t j = 0; j < n; j++) {
+      SuiteSparse_long sj = (SuiteSparse_long)j;
+      if (pass == 1)
+        Ap[j] = (SuiteSparse_long)pos;
+      for (int t = 0; t < 3; t++) { /* K's row j, M's (or the diagonal) */
+        const mfs_csr *B = t == 0 ? K : M;
+        size_t lo = 0, hi = 1;
+        if (t == 2 || B) {
+          lo = t == 2 ? 0 : B->ptr[j];
+          hi = t == 2 ? 1 : B->ptr[j + 1];
+        } else {
+          continue;
+        }
+        for (size_t e = lo; e < hi; e++) {
+          size_t i = t == 2 ? j : (size_t)B->idx[e];
+          if (i <= j && mark[i] != sj) {
+            mark[i] = sj;
+            if (pass == 1)
+              Ai[pos] = (SuiteSparse_long)i;
+            pos++;
+          }
+        }
+      }
+    }
+    if (pass == 0) {
+      nnz = pos;
+    } else {
+      Ap[n] = (SuiteSparse_long)pos;
+      if (!cholmod_l_sort(A, c)) {
+        cholmod_l_free_sparse(&A, c);
+        return NULL;
+      }
+      return A;
+    }
+  }
+  return NULL;
+}
+
+/* S = the lower triangle of Q (K + M) Q' in CHOLMOD's form, Q = L->Perm
+ * (new -> old), columns sorted (rows visited in the new order), with the
+ * entries of K and M apart in w->kx and w->mx: one pass per factorization
+ * forms sigma M - K in place (cholmod_l_factorize would permute and
+ * transpose the matrix at every call).  iw (2n) is workspace. */
+static int cert_permuted(cert_ws *w, const mfs_pencil *P, SuiteSparse_long *iw)
+{
+  const mfs_csr *K = P->K, *M = P->M;
+  size_t n = K->nrow;
+  const SuiteSparse_long *Q = w->L->Perm;
+  SuiteSparse_long *inv = iw, *mark = iw + n;
+  for (size_t r = 0; r < n; r++) {
+    inv[Q[r]] = (SuiteSparse_long)r;
+    mark[r] = -1;
+  }
+  /* the columns' counts */
+  cholmod_sparse *S = NULL;
+  SuiteSparse_long *Sp = NULL, *Si = NULL, *next = NULL;
+  for (int pass = 0; pass < 2; pass++) {
+    if (pass == 1) {
+      size_t nnz = 0;
+      for (size_t k = 0; k < n; k++) {
+        SuiteSparse_long t = (SuiteSparse_long)nnz;
+        nnz += (size_t)Sp[k];
+        Sp[k] = t;
+      }
+      Sp[n] = (SuiteSparse_long)nnz;
+      S = w->S = cholmod_l_allocate_sparse(n, n, nnz, 1, 1, -1, CHOLMOD_REAL, &w->c);
+      w->kx = mfs_calloc(nnz ? nnz : 1, sizeof *w->kx);
+      w->mx = mfs_calloc(nnz ? nnz : 1, sizeof *w->mx);
+      if (!S || !w->kx || !w->mx) {
+        mfs_free(Sp);
+        mfs_free(next);
+        return 0;
+      }
+      SuiteSparse_long *p = S->p;
+      memcpy(p, Sp, (n + 1) * sizeof *p);
+      mfs_free(Sp);
+      Sp = p;
+      Si = S->i;
+      memcpy(next, Sp, n * sizeof *next); /* the next free place of each column */
+      for (size_t r = 0; r < n; r++)
+        mark[r] = -1;
+    } else {
+      Sp = mfs_calloc(n + 1, sizeof *Sp);
+      next = mfs_malloc((n ? n : 1) * sizeof *next);
+      if (!Sp || !next) {
+        mfs_free(Sp);
+        mfs_free(next);
+        return 0;
+      }
+    }
+    for (size_t r = 0; r < n; r++) { /* row r of the new order: row j = Q[r] of K and M */
+      size_t j = (size_t)Q[r];
+      SuiteSparse_long sr = (SuiteSparse_long)r;
+      for (int t = 0; t < 2; t++) {
+        const mfs_csr *B = t == 0 ? K : M;
+        size_t lo = B ? B->ptr[j] : 0, hi = B ? B->ptr[j + 1] : 1;
+        for (size_t e = lo; e < hi; e++) {
+          size_t i = B ? (size_t)B->idx[e] : j;
+          SuiteSparse_long cc = inv[i];
+          if (cc > sr)
+            continue;
+          double v = B ? B->val[e] : P->m[j];
+          if (mark[cc] != sr) { /* a new entry (r, cc) */
+            mark[cc] = sr;
+            if (pass == 0) {
+              Sp[cc]++;
+            } else {
+              SuiteSparse_long q = next[cc]++;
+              Si[q] = sr;
+            }
+          }
+          if (pass == 1) {
+            double *x = t == 0 ? w->kx : w->mx;
+            x[next[cc] - 1] += v; /* rows arrive in order: the entry is the column's last */
+          }
+        }
+      }
+    }
+  }
+  mfs_free(next);
+  S->sorted = 1;
+  return 1;
+}
+
+/* x (n x dim, or NULL): the unknowns' coordinates, for a geometric order;
+ * order: MFS_CERT_ORDER_*.  The order and the symbolic analysis, once. */
+static int cert_init(cert_ws *w, const mfs_pencil *P, const double *x, int dim, int order)
 {
   memset(w, 0, sizeof *w);
   mfs_cholmod_start(&w->c);
@@ -882,17 +1071,32 @@ static int cert_init(cert_ws *w, const mfs_pencil *P, const double *x, int dim)
    * AMD's extra fill grows faster than METIS's cost (measured:
    * analysis/bench/bench_check.c) */
   w->c.nmethods = 1;
-  w->c.method[0].ordering = P->K->nrow <= CERT_AMD_MAX ? CHOLMOD_AMD : CHOLMOD_METIS;
-  if (x && dim > 0) {
-    size_t n = P->K->nrow;
+  size_t n = P->K->nrow;
+  w->c.method[0].ordering = n <= CERT_AMD_MAX ? CHOLMOD_AMD : CHOLMOD_METIS;
+  if (order == MFS_CERT_ORDER_AMD)
+    w->c.method[0].ordering = CHOLMOD_AMD;
+  else if (order == MFS_CERT_ORDER_METIS)
+    w->c.method[0].ordering = CHOLMOD_METIS;
+  else if (order == MFS_CERT_ORDER_NESDIS)
+    w->c.method[0].ordering = CHOLMOD_NESDIS;
+  if (x && dim > 0 && (order == MFS_CERT_ORDER_DEFAULT || order == MFS_CERT_ORDER_GEOMETRIC)) {
+    double t0 = wall();
     w->perm = mfs_malloc((n ? n : 1) * sizeof *w->perm);
     if (!w->perm || !mfs_cholmod_geometric_order(n, P->K, P->M, x, dim, w->perm))
       return MFS_ENOMEM;
     w->c.method[0].ordering = CHOLMOD_GIVEN;
+    w->order_s = wall() - t0;
   }
-  w->Ku = mfs_cholmod_upper(P->K, &w->c);
-  w->Mu = P->M ? mfs_cholmod_upper(P->M, &w->c) : diag_of(P->K->nrow, P->m, &w->c);
-  return w->Ku && w->Mu ? MFS_OK : MFS_ENOMEM;
+  double t0 = wall();
+  SuiteSparse_long *iw = mfs_malloc((2 * n + 1) * sizeof *iw);
+  cholmod_sparse *A = iw ? cert_pattern(P, iw, &w->c) : NULL;
+  if (A)
+    w->L = w->perm ? cholmod_l_analyze_p(A, w->perm, NULL, 0, &w->c) : cholmod_l_analyze(A, &w->c);
+  cholmod_l_free_sparse(&A, &w->c);
+  int ok = w->L && cert_permuted(w, P, iw);
+  mfs_free(iw);
+  w->analyze_s = wall() - t0;
+  return ok ? MFS_OK : MFS_ENOMEM;
 }
 
 /* gamma_m / (1 - gamma_m), gamma_m = m u / (1 - m u). */
@@ -925,22 +1129,29 @@ static void factor_rows(const cholmod_factor *L, int *kmax, int *wmax, long *wor
   *wmax = (int)(rk + colmax - 1);
 }
 
+/* cholmod_l_super_numeric of S into L, CHOLMOD's loops on this thread
+ * (chol_serial_begin). */
+static int cert_numeric(cholmod_sparse *S, cholmod_factor *L, cholmod_common *c)
+{
+  double zero[2] = {0.0, 0.0};
+  int levels = chol_serial_begin();
+  int ok = cholmod_l_super_numeric(S, NULL, zero, L, c);
+  chol_serial_end(levels);
+  return ok;
+}
+
 static int cert_factor(cert_ws *w, double sigma, mfs_certificate *out)
 {
   cholmod_common *c = &w->c;
-  double al[2] = {-1.0, 0.0}, be[2] = {sigma, 0.0};
-  cholmod_sparse *F = cholmod_l_add(w->Ku, w->Mu, al, be, 1, 1, c);
-  if (!F)
-    return MFS_ENOMEM;
-  if (!w->L) {
-    w->L = w->perm ? cholmod_l_analyze_p(F, w->perm, NULL, 0, c) : cholmod_l_analyze(F, c);
-    if (!w->L) {
-      cholmod_l_free_sparse(&F, c);
-      return MFS_ENOMEM;
-    }
-  }
-  int ok = cholmod_l_factorize(F, w->L, c);
-  cholmod_l_free_sparse(&F, c);
+  double t0 = wall();
+  double *Sx = w->S->x;
+  const double *kx = w->kx, *mx = w->mx;
+  size_t nnz = (size_t)((SuiteSparse_long *)w->S->p)[w->S->ncol];
+  for (size_t e = 0; e < nnz; e++) /* fl(fl(sigma m) - k): as cholmod_l_add formed it */
+    Sx[e] = sigma * mx[e] - kx[e];
+  c->status = CHOLMOD_OK;
+  int ok = cert_numeric(w->S, w->L, c);
+  w->numeric_s += wall() - t0;
   if (c->status == CHOLMOD_OUT_OF_MEMORY)
     return MFS_ENOMEM;
   out->ok = ok && c->status == CHOLMOD_OK && w->L->minor == w->L->n && w->L->is_super;
@@ -968,7 +1179,7 @@ mfs_status mfs_eig_certify(const mfs_pencil *P, double sigma, mfs_certificate *o
   if (st != MFS_OK || !(sigma > 0.0) || !isfinite(sigma))
     return MFS_EINVAL;
   cert_ws w;
-  st = cert_init(&w, P, NULL, 0);
+  st = cert_init(&w, P, NULL, 0, MFS_CERT_ORDER_DEFAULT);
   if (st == MFS_OK)
     st = cert_factor(&w, sigma, out);
   cert_free(&w);
@@ -1006,7 +1217,7 @@ mfs_status mfs_eig_certify_search(const mfs_pencil *P, const mfs_certify_opts *o
   double gap = o->gap > 0.0 ? o->gap : 1e-6, growth = o->growth > 1.0 ? o->growth : 10.0;
   int maxf = o->max_factorizations > 0 ? o->max_factorizations : 30;
   cert_ws w;
-  st = cert_init(&w, P, o->coord_dim > 0 ? o->coord : NULL, o->coord_dim);
+  st = cert_init(&w, P, o->coord_dim > 0 ? o->coord : NULL, o->coord_dim, o->order);
   double lo = o->lambda_est, hi = 0.0;
   mfs_certificate best = {0};
   /* bracket: sigma's gap grows by `growth` until a factorization succeeds */
@@ -1024,6 +1235,11 @@ mfs_status mfs_eig_certify_search(const mfs_pencil *P, const mfs_certify_opts *o
     r->factor_nnz = best.factor_nnz;
     r->flops = best.flops;
   }
+  if (w.L)
+    r->supernodes = (int)w.L->nsuper;
+  r->order_s = w.order_s;
+  r->analyze_s = w.analyze_s;
+  r->numeric_s = w.numeric_s;
   cert_free(&w);
   return st;
 }

@@ -182,7 +182,19 @@ typedef struct {
                              geometric fill-reducing order (nested dissection by coordinate
                              bisection); NULL: AMD (METIS above 3e5 unknowns) */
   int coord_dim;          /* 1, 2 or 3 with coord */
+  int order;              /* MFS_CERT_ORDER_*: the fill-reducing order (0: the default above) */
 } mfs_certify_opts;
+
+/* The orders mfs_certify_opts.order asks for (benchmarks compare them):
+ * the geometric nested dissection (needs coord), CHOLMOD's AMD, METIS, and
+ * its own nested dissection NESDIS (CAMD on METIS's separators). */
+enum {
+  MFS_CERT_ORDER_DEFAULT = 0,
+  MFS_CERT_ORDER_GEOMETRIC,
+  MFS_CERT_ORDER_AMD,
+  MFS_CERT_ORDER_METIS,
+  MFS_CERT_ORDER_NESDIS
+};
 
 typedef struct {
   int ok;                 /* some sigma was certified */
@@ -194,6 +206,11 @@ typedef struct {
   int factorizations;
   double factor_nnz;
   double flops;           /* of one factorization */
+  int supernodes;         /* of the factor */
+  double order_s;         /* wall seconds: the fill-reducing order (geometric: ours; else in
+                             CHOLMOD's analysis), */
+  double analyze_s;       /* the symbolic analysis (with the order, for CHOLMOD's orders), */
+  double numeric_s;       /* the numeric factorizations (all of them, with forming sigma M - K) */
 } mfs_certify_result;
 
 /* MFS_OK (r->ok 0 if no sigma was certified), MFS_EINVAL, MFS_ENOMEM. */
