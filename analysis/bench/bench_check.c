@@ -21,7 +21,8 @@
  *       the perturbed SIDE x SIDE model (cubic MLS, D = 2, nodal, anti-plane,
  *       free): lambda_max by ARPACK at relative accuracy 1e-12 (what mfstab eigs
  *       does), against dt_certified the way mfstab bound --certify gets it
- *       (ARPACK at 1e-3, then the factorizations of sigma M - K from
+ *       (plain Lanczos at 1e-4 with a lumped mass, ARPACK at 1e-3 with a
+ *       consistent one or with --arpack-estimate; then the factorizations of sigma M - K from
  *       sigma = lambda (1 + 4e-4), the gap 4 times larger after a failure;
  *       --est-tol T and --gap G change the two)
  *       (--quadrature RULE for another rule), ARPACK first unless --certify-first;
@@ -162,17 +163,26 @@ static mfs_status arpack_full(const mfs_pencil *P, double *lam, int *mv, double 
 }
 
 static double est_tol = 1e-3, est_gap = 4e-4; /* mfstab bound --certify's */
+static int arpack_est = 0;                      /* --arpack-estimate */
 
-/* dt_certified as mfstab bound --certify gets it: ARPACK at est_tol, then the
- * factorizations; t[0..2], c[0]: total, estimate, factorizations (wall), total CPU. */
+/* dt_certified as mfstab bound --certify gets it: the estimate by plain
+ * Lanczos at 1e-4 with a lumped mass (ARPACK at est_tol with a consistent
+ * one, or with --arpack-estimate), then the factorizations; t[0..2], c[0]:
+ * total, estimate, factorizations (wall), total CPU. */
 
 static mfs_status certified(const mfs_pencil *P, const double *x, int dim, int order,
                             mfs_certify_result *cr, double *t, double *c)
 {
-  mfs_eig_info info;
-  mfs_eig_opts quick = {0, 0, est_tol};
   double lan, t0 = now(), c0 = cpu();
-  mfs_status st = mfs_eig_max(P, &quick, &lan, NULL, &info);
+  mfs_status st;
+  if (P->m && !arpack_est) { /* a lumped mass: plain Lanczos at 1e-4 */
+    mfs_lanczos_opts lo = {.tol = 1e-4};
+    st = mfs_lanczos_max(P, &lo, &lan, NULL);
+  } else {
+    mfs_eig_info info;
+    mfs_eig_opts quick = {0, 0, est_tol};
+    st = mfs_eig_max(P, &quick, &lan, NULL, &info);
+  }
   double t1 = now();
   mfs_certify_opts co = {.lambda_est = lan, .gap = est_gap, .growth = 4.0, .coord = x,
                          .coord_dim = x ? dim : 0, .order = order};
@@ -261,6 +271,8 @@ int main(int argc, char **argv)
       cert_first = 1;
     else if (strcmp(argv[i], "--amd") == 0)
       amd = 1;
+    else if (strcmp(argv[i], "--arpack-estimate") == 0)
+      arpack_est = 1;
     else if (strcmp(argv[i], "--est-tol") == 0 && i + 1 < argc)
       est_tol = atof(argv[++i]);
     else if (strcmp(argv[i], "--gap") == 0 && i + 1 < argc)
