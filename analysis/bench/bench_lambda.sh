@@ -136,7 +136,7 @@ if gbs > 0:
 else:
     lims = ",,,,"
 print(f"scipy,{rep},{int(side) ** 2},{n},{nnz},1,{tol:g},,{te:.4f},{nmv},{te / nmv:.6g},"
-      f"{top[0] / nmv:.6g},{lam:.15g},{abs(lam - ref) / ref:.3g},,,bytes,{by:.0f},{lims},{peak:.1f},{load}")
+      f"{top[0] / nmv:.6g},{lam:.15g},{abs(lam - ref) / ref:.3g},,,bytes,{by:.0f},{lims},{peak:.1f},,,{load}")
 EOF
     if [ "$CERTIFY" = 1 ]; then
       l=$(load)
