@@ -150,6 +150,11 @@ static void one(const config *c)
     CHECK(sb == 0, "%s: the sample and mfs_disp_omega2_states differ in %d points", c->what, sb);
     mfs_disp_sample_free(smp);
   }
+  size_t no;
+  int nc;
+  mfs_disp_plan_work(pl, &no, &nc); /* the work bench_dispersion states its limit from */
+  CHECK(no >= 1 && nc >= 1 && nc <= 72, /* the raw components, real and imaginary */ "%s: plan work %zu offsets x %d components",
+        c->what, no, nc);
   printf("  %-44s folded vs direct %.2g\n", c->what, worst);
   mfs_disp_plan_free(pl);
 }

@@ -21,8 +21,11 @@
  * largest |omega^2| (1d: the closed form eq. 74 of lib/analysis/mfs_closed.c;
  * 2d: the direct symbols); ratio: the direct phase's median over this one's.
  * CSV: family,phase,points,branches,threads,repeats,seconds_min,seconds_median,
- *   seconds_max,ns_per_point,ns_per_point_branch,ratio,identical,error,peak_rss_mb,load1
- * (ns_per_point from the median).  With --numpy-data DIR the coefficients of the
+ *   seconds_max,ns_per_point,ns_per_point_branch,ratio,identical,error,peak_rss_mb,load1,gflop
+ * (ns_per_point from the median); gflop: the minimal work of the phase's
+ * points, the folded sums once per wave vector (mfs_disp_plan_work: 2 flops
+ * per offset and component, shared by the stresses; 10^9 flops), the limit
+ * analysis/bench/limits.py states against dgemm's rate.  With --numpy-data DIR the coefficients of the
  * NumPy comparison (bench_dispersion_numpy.py) and this run's values go to DIR.
  * usage: bench_dispersion [--repeat R] [--family NAME] [--no-threads] [--numpy-data DIR] [-o FILE]
  * Not a test: nothing here asserts a time. */
@@ -311,6 +314,15 @@ static void bench(FILE *out, const char *name, int repeat, int threads, const ch
   const int npts = f.nplan * f.nsig * f.nth * f.nk;
   double complex *w = malloc(nval * sizeof *w);
   const char *phases[] = {"direct", "point", "ray", "ray-stresses"};
+  /* the minimal work: the folded sums once per wave vector (shared by the
+   * stresses), 2 flops per offset and component (mfs_disp_plan_work) */
+  double gflop = 0.0;
+  for (int q = 0; q < f.nplan; q++) {
+    size_t no;
+    int nc;
+    mfs_disp_plan_work(f.pl[q], &no, &nc);
+    gflop += 1e-9 * 2.0 * (double)no * nc * f.nth * f.nk;
+  }
   double tdirect = NAN, *ts = malloc((size_t)repeat * sizeof *ts);
   for (int p = 0; p < 4; p++) {
     if (f.nsig == 1 && p == 3)
@@ -325,9 +337,9 @@ static void bench(FILE *out, const char *name, int repeat, int threads, const ch
     if (p == 0)
       tdirect = med;
     double err = family_error(&f, w);
-    fprintf(out, "%s,%s,%d,%d,1,%d,%.6g,%.6g,%.6g,%.4g,%.4g,%.4g,,%.3g,%.1f,%.2f\n", name,
+    fprintf(out, "%s,%s,%d,%d,1,%d,%.6g,%.6g,%.6g,%.4g,%.4g,%.4g,,%.3g,%.1f,%.2f,%.6g\n", name,
             phases[p], npts, f.nb, repeat, ts[0], med, ts[repeat - 1], 1e9 * med / npts,
-            1e9 * med / npts / f.nb, tdirect / med, err, rss_mb(), bench_load1());
+            1e9 * med / npts / f.nb, tdirect / med, err, rss_mb(), bench_load1(), gflop);
     fflush(out);
   }
   if (npdir)
@@ -350,10 +362,10 @@ static void bench(FILE *out, const char *name, int repeat, int threads, const ch
     if (nt == 1)
       t1 = med;
     int same = nt == 1 || memcmp(w10[0], w10[1], n10 * sizeof **w10) == 0;
-    fprintf(out, "%s,threads-%d,%d,%d,%d,%d,%.6g,%.6g,%.6g,%.4g,%.4g,%.4g,%s,,%.1f,%.2f\n", name,
+    fprintf(out, "%s,threads-%d,%d,%d,%d,%d,%.6g,%.6g,%.6g,%.4g,%.4g,%.4g,%s,,%.1f,%.2f,%.6g\n", name,
             nt, npts * 20, f.nb, nt, repeat, ts[0], med, ts[repeat - 1], 1e9 * med / (npts * 20.0),
             1e9 * med / (npts * 20.0) / f.nb, t1 / med, nt == 1 ? "" : same ? "1" : "0", rss_mb(),
-            bench_load1());
+            bench_load1(), 20.0 * gflop);
     fflush(out);
   }
   set_threads(2);
@@ -396,7 +408,7 @@ int main(int argc, char **argv)
   const char *fams[] = {"1d", "2d-antiplane", "2d-plane", "2d-star", "2d-star-plane"};
   fprintf(out, "family,phase,points,branches,threads,repeats,seconds_min,seconds_median,"
                "seconds_max,ns_per_point,ns_per_point_branch,ratio,identical,error,peak_rss_mb,"
-               "load1\n");
+               "load1,gflop\n");
   for (int k = 0; k < 5; k++)
     if (!fam || !strcmp(fam, fams[k]))
       bench(out, fams[k], repeat, threads, npdir);

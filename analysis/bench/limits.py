@@ -115,6 +115,17 @@ def table4(row, bw, gflops):
     return "flops", (20.0 * n + 101.0 * n + 32.0) / gflops, tm * 1e-6
 
 
+def dispersion(row, bw, gflops):
+    """bench_dispersion: the folded lattice sums once per wave vector (the
+    gflop column, bench_dispersion.c), at dgemm's one-thread rate times the
+    row's threads; the phases, the eigen solves and the reference path's
+    extra sums are work above that bound."""
+    g, s, t = f(row, "gflop"), f(row, "seconds_median"), f(row, "threads") or 1.0
+    if g:
+        return "flops", g * 1e9 / (gflops * t), s
+    return "none", None, s
+
+
 def none(row, bw):
     for k in ("seconds", "total_s", "wall_s", "seconds_median", "eval_s"):
         if f(row, k) is not None:
@@ -175,6 +186,8 @@ def main():
         rule = RULES.get(name, none)
         if rule is check:
             rule = lambda r, b: check(r, b, a.gflops * 1e9)  # noqa: E731
+        if name == "bench_dispersion":
+            rule = lambda r, b: dispersion(r, b, a.gflops * 1e9)  # noqa: E731
         if name == "bench_table4":
             rule = lambda r, b: table4(r, b, a.gflops * 1e9)  # noqa: E731
             if "cd1_fraction" not in cols:

@@ -1245,6 +1245,12 @@ static int want_im(const mfs_disp_plan *dp)
   return !(hermitian(dp) && dp->nbr == 1);
 }
 
+void mfs_disp_plan_work(const mfs_disp_plan *pl, size_t *offsets, int *components)
+{
+  *offsets = pl->no;
+  *components = pl->nsym + (want_im(pl) ? pl->nanti : 0);
+}
+
 mfs_status mfs_disp_omega2_state(const mfs_disp_plan *dp, const mfs_plane_state *s,
                                  const double *k, double complex *omega2)
 {

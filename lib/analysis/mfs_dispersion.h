@@ -100,6 +100,12 @@ void mfs_disp_plan_free(mfs_disp_plan *pl);
 /* Number of branches (unit-cell particles times degrees of freedom). */
 int mfs_disp_branches(const mfs_disp_plan *pl);
 
+/* The size of a plan's folded lattice sums, the work of one wave vector:
+ * *offsets lattice offsets times *components symbol components (the real
+ * parts, and the imaginary parts where the evaluation needs them), one
+ * multiply and one add each; the phases and the eigen solve come on top. */
+void mfs_disp_plan_work(const mfs_disp_plan *pl, size_t *offsets, int *components);
+
 /* Reciprocal-lattice check: 1 if the wave vector k (2 components, in 1/dx)
  * is a reciprocal-lattice vector of the unit cell (the Bloch symbol equals
  * that at k = 0), within tol. */
