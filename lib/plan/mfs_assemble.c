@@ -521,6 +521,10 @@ typedef struct {
   const int *prow, *part;
   mfs_row_fn fn;
   void *ctx;
+  /* if not NULL: called after each block's rows (r0 .. r1), in the order of
+   * the blocks, one at a time (mfs_assemble's append) */
+  void (*block_fn)(void *ctx, size_t r0, size_t r1, int thread);
+  size_t cap; /* the rows' capacity, or 0: row_cap(pl) */
 } sweep_job;
 
 static void sweep_ws_free(sweep_ws *w)
@@ -628,6 +632,29 @@ static void sweep_block_run(const sweep_job *j, sweep_ws *w, size_t r0, size_t r
       w->slot[w->need[k]] = -1;
 }
 
+/* sweep_block_run, its failures merged into the sweep's (the smallest). */
+static void sweep_block_note(const sweep_job *j, sweep_ws *w, size_t r0, size_t r1, int stream,
+                             int thread, size_t *bad_q, mfs_status *st_q, size_t *bad_row,
+                             mfs_status *st_row)
+{
+  size_t bq = SIZE_MAX, br = SIZE_MAX;
+  mfs_status sq = MFS_OK, sr = MFS_OK;
+  sweep_block_run(j, w, r0, r1, stream, thread, &bq, &sq, &br, &sr);
+  if (bq != SIZE_MAX || br != SIZE_MAX) {
+#pragma omp critical(mfs_row_sweep)
+    {
+      if (bq < *bad_q) {
+        *bad_q = bq;
+        *st_q = sq;
+      }
+      if (br < *bad_row) {
+        *bad_row = br;
+        *st_row = sr;
+      }
+    }
+  }
+}
+
 static mfs_status sweep_run(const sweep_job *j, size_t *bad)
 {
   const mfs_plan *pl = j->pl;
@@ -637,7 +664,7 @@ static mfs_status sweep_run(const sweep_job *j, size_t *bad)
   const int order = need2 ? 2 : 1, table = mfs_plan_order(pl) >= order, stream = !table;
   const int nt = mfs_threads();
   const size_t B = sweep_block(n, table, nt), nb = (n + B - 1) / B;
-  const size_t cap = row_cap(pl);
+  const size_t cap = j->cap ? j->cap : row_cap(pl);
   mfs_status st = MFS_ENOMEM;
   sweep_ws *ws = mfs_calloc((size_t)nt, sizeof *ws);
   size_t *bnp = NULL, *bne = NULL;
@@ -713,24 +740,21 @@ static mfs_status sweep_run(const sweep_job *j, size_t *bad)
         }
       }
   }
+  if (j->block_fn) {
+#pragma omp parallel for ordered schedule(dynamic, 1) num_threads(nt)
+    for (size_t b = 0; b < nb; b++) {
+      const int t = mfs_thread_id();
+      size_t r1 = (b + 1) * B < n ? (b + 1) * B : n;
+      sweep_block_note(j, ws + t, b * B, r1, stream, t, &bad_q, &st_q, &bad_row, &st_row);
+#pragma omp ordered
+      j->block_fn(j->ctx, b * B, r1, t);
+    }
+  } else {
 #pragma omp parallel for schedule(dynamic, 1) num_threads(nt)
-  for (size_t b = 0; b < nb; b++) {
-    const int t = mfs_thread_id();
-    size_t r1 = (b + 1) * B < n ? (b + 1) * B : n, bq = SIZE_MAX, br = SIZE_MAX;
-    mfs_status sq = MFS_OK, sr = MFS_OK;
-    sweep_block_run(j, ws + t, b * B, r1, stream, t, &bq, &sq, &br, &sr);
-    if (bq != SIZE_MAX || br != SIZE_MAX) {
-#pragma omp critical(mfs_row_sweep)
-      {
-        if (bq < bad_q) {
-          bad_q = bq;
-          st_q = sq;
-        }
-        if (br < bad_row) {
-          bad_row = br;
-          st_row = sr;
-        }
-      }
+    for (size_t b = 0; b < nb; b++) {
+      const int t = mfs_thread_id();
+      size_t r1 = (b + 1) * B < n ? (b + 1) * B : n;
+      sweep_block_note(j, ws + t, b * B, r1, stream, t, &bad_q, &st_q, &bad_row, &st_row);
     }
   }
   st = MFS_OK;
@@ -1024,22 +1048,329 @@ done:
   return st;
 }
 
-/* The matrix of the forms over every particle: the pattern, then its values. */
+/* ------------------------------------------------------------------ */
+/* one-shot assembly: the pattern and the values in one sweep            */
+
+/* The entries the free rows can have, for blocks of B rows: s_I = min(n,
+ * the sum of the list lengths of the points that see I) columns of ndof^2
+ * entries.  *total: their sum; *block: the largest sum over a block; *cap:
+ * the largest s_I over every row (row_cap's). */
+static void row_bounds(const mfs_plan *pl, const unsigned char *fixed, size_t B, size_t nd2,
+                       size_t *total, size_t *block, size_t *cap)
+{
+  const size_t n = mfs_plan_particles(pl)->n, nb = (n + B - 1) / B;
+  const size_t *tptr;
+  const int *tidx;
+  const double *ttab;
+  mfs_plan_table(pl, &tptr, &tidx, &ttab);
+  size_t tot = 0, blk = 0, cp = 1;
+#pragma omp parallel for reduction(+ : tot) reduction(max : blk, cp) schedule(static)
+  for (size_t b = 0; b < nb; b++) {
+    size_t r1 = (b + 1) * B < n ? (b + 1) * B : n, sum = 0;
+    for (size_t I = b * B; I < r1; I++) {
+      size_t nq, s = 0;
+      const int *Q;
+      mfs_plan_particle_points(pl, I, &nq, &Q);
+      for (size_t t = 0; t < nq; t++)
+        s += tptr[Q[t] + 1] - tptr[Q[t]];
+      s = s < n ? s : n;
+      cp = s > cp ? s : cp;
+      if (!fixed || !fixed[I])
+        sum += s * nd2;
+    }
+    tot += sum;
+    blk = sum > blk ? sum : blk;
+  }
+  *total = tot;
+  *block = blk;
+  *cap = cp < n ? cp : (n ? n : 1);
+}
+
+/* Entries in row order: the matrix's, or a thread's block of them. */
+typedef struct {
+  int *idx;
+  double *kv, *mv; /* K's and M's values (each if asked for) */
+  size_t len;
+} fuse_buf;
+
+typedef struct {
+  fuse_buf out;   /* the matrices' entries */
+  fuse_buf *tb;   /* more than one thread: each one's block, appended to out in block order */
+  int *srt;       /* per thread: a row's free columns, sorted (cap each) */
+  uint64_t *bits; /* per thread: PATTERN_WORDS */
+  size_t cap;
+  size_t *rlen;   /* per particle: the free columns of its row */
+  const mfs_plan *pl;
+  const int *prow;
+  int ndof, pu, nt;
+  double density, node_vol;
+  const double *vol;
+  double *m;
+} fuse_ctx;
+
+static int cmp_int(const void *a, const void *b)
+{
+  int x = *(const int *)a, y = *(const int *)b;
+  return (x > y) - (x < y);
+}
+
+/* The free columns of row r of particle I (r->col, in order of first
+ * appearance) sorted into srt; returns their count.  As pattern_row: the
+ * columns lie between the smallest first and the largest last entry of the
+ * (sorted) lists of I's points; a bitmap of that window where it is at most
+ * PATTERN_WORDS wide, else a sort.  nd == 1 (and the one sweep's row, mark
+ * its positions): the entries are written at once, idx into ix and the
+ * values into kv and mv (each if not NULL), and srt is not used. */
+static size_t row_sorted_free(const mfs_plan *pl, size_t I, const mfs_row *r, const int *prow,
+                              uint64_t *bits, int *srt, size_t nd, int *ix, double *kv,
+                              double *mv)
+{
+  const size_t len = r->len;
+  const int *col = r->col;
+  size_t nq, k = 0;
+  const int *Q;
+  mfs_plan_particle_points(pl, I, &nq, &Q);
+  int lo = INT32_MAX, hi = -1;
+  for (size_t t = 0; t < nq; t++) {
+    size_t e0 = r->tptr[Q[t]], e1 = r->tptr[Q[t] + 1];
+    if (e1 > e0) {
+      lo = r->tidx[e0] < lo ? r->tidx[e0] : lo;
+      hi = r->tidx[e1 - 1] > hi ? r->tidx[e1 - 1] : hi;
+    }
+  }
+  if (hi < lo)
+    return 0;
+  size_t nw = ((size_t)(hi - lo) >> 6) + 1;
+  if (nw <= PATTERN_WORDS) {
+    memset(bits, 0, nw * sizeof *bits);
+    for (size_t s = 0; s < len; s++) {
+      unsigned d = (unsigned)(col[s] - lo);
+      bits[d >> 6] |= (uint64_t)1 << (d & 63);
+    }
+    if (nd == 1) {
+      const int *mark = r->mark;
+      for (size_t w = 0; w < nw; w++)
+        for (uint64_t b = bits[w]; b; b &= b - 1) {
+          int J = lo + (int)(w << 6) + __builtin_ctzll(b);
+          if (prow[J] >= 0) {
+            ix[k] = prow[J];
+            if (kv)
+              kv[k] = r->K[mark[J]];
+            if (mv)
+              mv[k] = r->M ? r->M[mark[J]] : 0.0;
+            k++;
+          }
+        }
+      return k;
+    }
+    for (size_t w = 0; w < nw; w++)
+      for (uint64_t b = bits[w]; b; b &= b - 1) {
+        int J = lo + (int)(w << 6) + __builtin_ctzll(b);
+        if (prow[J] >= 0)
+          srt[k++] = J;
+      }
+    return k;
+  }
+  for (size_t s = 0; s < len; s++)
+    if (prow[col[s]] >= 0)
+      srt[k++] = col[s];
+  qsort(srt, k, sizeof *srt, cmp_int);
+  if (nd == 1)
+    for (size_t s = 0; s < k; s++) {
+      int J = srt[s];
+      ix[s] = prow[J];
+      if (kv)
+        kv[s] = r->K[r->mark[J]];
+      if (mv)
+        mv[s] = r->M ? r->M[r->mark[J]] : 0.0;
+    }
+  return k;
+}
+
+/* A row of the sweep, its free columns sorted, appended to its thread's
+ * entries (to the matrix's with one thread); the lumped mass as fill_row. */
+static mfs_status fuse_row(void *vc, const mfs_row *r, size_t I, int thread)
+{
+  fuse_ctx *c = vc;
+  fuse_buf *b = c->nt > 1 ? c->tb + thread : &c->out;
+  int *srt = c->srt + (size_t)thread * c->cap;
+  const size_t nd = (size_t)c->ndof, nd2 = nd * nd, rp = (size_t)c->prow[I];
+  int *ix = b->idx + b->len;
+  double *kv = b->kv ? b->kv + b->len : NULL, *mv = b->mv ? b->mv + b->len : NULL;
+  const size_t len = row_sorted_free(c->pl, I, r, c->prow, c->bits + (size_t)thread * PATTERN_WORDS,
+                                     srt, nd, ix, kv, mv);
+  c->rlen[I] = len;
+  if (nd > 1)
+    for (size_t a = 0, e = 0; a < nd; a++)
+      for (size_t s = 0; s < len; s++) {
+        size_t q = (size_t)r->mark[srt[s]];
+        for (size_t bb = 0; bb < nd; bb++, e++) {
+          ix[e] = (int)((size_t)c->prow[srt[s]] * nd + bb);
+          if (kv)
+            kv[e] = r->K[q * nd2 + a * nd + bb];
+          if (mv)
+            mv[e] = a == bb && r->M ? r->M[q] : 0.0;
+        }
+      }
+  b->len += len * nd2;
+  if (c->m) /* sph: the particle masses rho V_I (eq. 51) */
+    for (size_t a = 0; a < nd; a++)
+      c->m[rp * nd + a] = c->pu ? r->lump : c->density * (c->vol ? c->vol[I] : c->node_vol);
+  return MFS_OK;
+}
+
+/* A thread's block after the blocks before it: appended to the matrix's. */
+static void fuse_block(void *vc, size_t r0, size_t r1, int thread)
+{
+  (void)r0;
+  (void)r1;
+  fuse_ctx *c = vc;
+  fuse_buf *b = c->tb + thread;
+  memcpy(c->out.idx + c->out.len, b->idx, b->len * sizeof *b->idx);
+  if (b->kv)
+    memcpy(c->out.kv + c->out.len, b->kv, b->len * sizeof *b->kv);
+  if (b->mv)
+    memcpy(c->out.mv + c->out.len, b->mv, b->len * sizeof *b->mv);
+  c->out.len += b->len;
+  b->len = 0;
+}
+
+static mfs_status fuse_buf_alloc(fuse_buf *b, size_t len, int k, int m)
+{
+  len = len ? len : 1;
+  b->idx = mfs_malloc(len * sizeof *b->idx);
+  b->kv = k ? mfs_malloc(len * sizeof *b->kv) : NULL;
+  b->mv = m ? mfs_malloc(len * sizeof *b->mv) : NULL;
+  return b->idx && (!k || b->kv) && (!m || b->mv) ? MFS_OK : MFS_ENOMEM;
+}
+
+static void fuse_buf_free(fuse_buf *b)
+{
+  mfs_free(b->idx);
+  mfs_free(b->kv);
+  mfs_free(b->mv);
+}
+
+/* A block shrunk to len entries (kept as it is if the shrinking fails). */
+static void *shrink(void *p, size_t bytes)
+{
+  void *t = p ? mfs_realloc(p, bytes ? bytes : 1) : NULL;
+  return t ? t : p;
+}
+
+mfs_status mfs_assemble(const mfs_plan *pl, const mfs_material *mat, const unsigned char *fixed,
+                        mfs_csr **K, mfs_csr **M, double *m, size_t *bad)
+{
+  if (K)
+    *K = NULL;
+  if (M)
+    *M = NULL;
+  if (!pl || !mat || (!K && !M))
+    return MFS_EINVAL;
+  const mfs_particles *p = mfs_plan_particles(pl);
+  if (mat->physics == MFS_PHYS_PLANE_STRAIN && p->dim != 2)
+    return MFS_EINVAL;
+  const size_t n = p->n;
+  const int nd = mfs_physics_ndof(mat->physics), nt = mfs_threads();
+  const size_t nd2 = (size_t)nd * (size_t)nd;
+  const mfs_disc *d = mfs_plan_disc(pl); /* the lumped mass: as mfs_assemble_fill */
+  const int pu = d->shape->partition_of_unity && !d->node_volume_mass;
+  mfs_forms f = mfs_forms_stiffness(mat);
+  f.stiffness = K != NULL;
+  if (M)
+    f.density = mat->density;
+  if (m && pu)
+    f.lumped_density = mat->density;
+  /* the blocks of mfs_row_sweep's, for the forms' order (1) */
+  const size_t B = sweep_block(n, mfs_plan_order(pl) >= 1, nt);
+  size_t total, blk, cap;
+  row_bounds(pl, fixed, B, nd2, &total, &blk, &cap);
+  mfs_status st = MFS_ENOMEM;
+  mfs_csr *A = NULL, *C = NULL;
+  int *prow = mfs_malloc((n ? n : 1) * sizeof *prow);
+  fuse_ctx c = {.cap = cap, .ndof = nd, .pu = pu, .nt = nt, .density = mat->density,
+                .node_vol = d->node_volume_mass ? mfs_particles_node_volume(p) : 0.0,
+                .vol = d->node_volume_mass ? NULL : p->vol, .m = m, .pl = pl, .prow = prow};
+  c.rlen = mfs_calloc(n ? n : 1, sizeof *c.rlen);
+  c.srt = mfs_malloc((size_t)nt * cap * sizeof *c.srt);
+  c.bits = mfs_malloc((size_t)nt * PATTERN_WORDS * sizeof *c.bits);
+  if (!prow || !c.rlen || !c.srt || !c.bits)
+    goto done;
+  /* the matrix's entries at their bound: the pages past the rows' are never
+   * touched, and the block is shrunk at the end */
+  if (fuse_buf_alloc(&c.out, total, K != NULL, M != NULL) != MFS_OK)
+    goto done;
+  if (nt > 1) {
+    if (!(c.tb = mfs_calloc((size_t)nt, sizeof *c.tb)))
+      goto done;
+    for (int t = 0; t < nt; t++)
+      if (fuse_buf_alloc(c.tb + t, blk, K != NULL, M != NULL) != MFS_OK)
+        goto done;
+  }
+  size_t nf = free_rows(n, fixed, prow, NULL);
+  sweep_job j = {.pl = pl, .f = &f, .skip = fixed, .fn = fuse_row, .ctx = &c,
+                 .block_fn = nt > 1 ? fuse_block : NULL, .cap = cap};
+  if ((st = sweep_run(&j, bad)) != MFS_OK)
+    goto done;
+  st = MFS_ENOMEM;
+  const size_t nr = nf * (size_t)nd;
+  if (!(A = mfs_calloc(1, sizeof *A)) || !(A->ptr = mfs_malloc((nr + 1) * sizeof *A->ptr)))
+    goto done;
+  A->nrow = A->ncol = nr;
+  A->ptr[0] = 0;
+  for (size_t I = 0, r = 0; I < n; I++)
+    if (prow[I] >= 0)
+      for (int a = 0; a < nd; a++, r++)
+        A->ptr[r + 1] = A->ptr[r] + c.rlen[I] * (size_t)nd;
+  const size_t nnz = c.out.len;
+  if (K && M) { /* M: a copy of the pattern */
+    if (!(C = mfs_calloc(1, sizeof *C)) || !(C->ptr = mfs_malloc((nr + 1) * sizeof *C->ptr)) ||
+        !(C->idx = mfs_malloc((nnz ? nnz : 1) * sizeof *C->idx)))
+      goto done;
+    C->nrow = C->ncol = nr;
+    memcpy(C->ptr, A->ptr, (nr + 1) * sizeof *C->ptr);
+    memcpy(C->idx, c.out.idx, nnz * sizeof *C->idx);
+  }
+  A->idx = shrink(c.out.idx, nnz * sizeof *A->idx);
+  A->val = shrink(K ? c.out.kv : c.out.mv, nnz * sizeof *A->val);
+  c.out.idx = NULL;
+  if (K) {
+    c.out.kv = NULL;
+    *K = A;
+    A = NULL;
+  } else {
+    c.out.mv = NULL;
+    *M = A;
+    A = NULL;
+  }
+  if (C) {
+    C->val = shrink(c.out.mv, nnz * sizeof *C->val);
+    c.out.mv = NULL;
+    *M = C;
+    C = NULL;
+  }
+  st = MFS_OK;
+done:
+  mfs_csr_free(A);
+  mfs_csr_free(C);
+  fuse_buf_free(&c.out);
+  if (c.tb)
+    for (int t = 0; t < nt; t++)
+      fuse_buf_free(c.tb + t);
+  mfs_free(c.tb);
+  mfs_free(c.srt);
+  mfs_free(c.bits);
+  mfs_free(c.rlen);
+  mfs_free(prow);
+  return st;
+}
+
+/* The matrix of the forms over every particle, in one sweep. */
 static mfs_status assemble_csr(const mfs_plan *pl, const mfs_material *mat, int want_mass,
                                mfs_csr **out)
 {
-  *out = NULL;
-  mfs_csr *A = NULL;
-  mfs_status st = mfs_assemble_pattern(pl, mfs_physics_ndof(mat->physics), NULL, &A);
-  if (st == MFS_OK)
-    st = want_mass ? mfs_assemble_fill(pl, mat, NULL, NULL, A, NULL, NULL)
-                   : mfs_assemble_fill(pl, mat, NULL, A, NULL, NULL, NULL);
-  if (st != MFS_OK) {
-    mfs_csr_free(A);
-    return st;
-  }
-  *out = A;
-  return MFS_OK;
+  return want_mass ? mfs_assemble(pl, mat, NULL, NULL, out, NULL, NULL)
+                   : mfs_assemble(pl, mat, NULL, out, NULL, NULL, NULL);
 }
 
 mfs_status mfs_assemble_stiffness(const mfs_plan *pl, const mfs_material *mat, mfs_csr **K)
