@@ -17,7 +17,8 @@
  *
  * Phases:
  *   lattice, quadrature     mfs_lattice_alloc, mfs_quad_alloc
- *   neighbour_search        mfs_plan_alloc: cell lists, the lists of the points and their transpose
+ *   neighbour_search        mfs_plan_alloc: cell lists and the lists of the points (their
+ *                           transpose is built by the assembly, mfs_plan_transpose)
  *   shape_tables            (table) mfs_plan_tabulate
  *   assembly                mfs_assemble: K (its pattern and values) and the lumped mass in
  *                           one sweep over the rows (model: with the shape functions'

@@ -128,6 +128,10 @@ nomem:
 
 mfs_status mfs_row_init(mfs_row *r, const mfs_plan *pl, const mfs_forms *f)
 {
+  memset(r, 0, sizeof *r);
+  mfs_status st = mfs_plan_transpose(pl);
+  if (st != MFS_OK)
+    return st;
   return row_init_cap(r, pl, f, row_cap(pl), 1);
 }
 
@@ -525,6 +529,9 @@ typedef struct {
    * the blocks, one at a time (mfs_assemble's append) */
   void (*block_fn)(void *ctx, size_t r0, size_t r1, int thread);
   size_t cap; /* the rows' capacity, or 0: row_cap(pl) */
+  /* if not NULL (and no pattern): row I assembled and delivered by this
+   * instead of mfs_row_assemble and fn (r: the thread's row workspace) */
+  mfs_status (*row)(void *ctx, mfs_row *r, size_t I, int thread);
 } sweep_job;
 
 static void sweep_ws_free(sweep_ws *w)
@@ -616,10 +623,12 @@ static void sweep_block_run(const sweep_job *j, sweep_ws *w, size_t r0, size_t r
         for (size_t c = 0; c < len; c++)
           w->cols[c] = j->part[(size_t)j->pat->idx[e0 + c * nd] / nd];
         s = len <= w->r.cap ? row_assemble_into(&w->r, pl, j->f, I, w->cols, len) : MFS_EINVAL;
+      } else if (j->row) {
+        s = j->row(j->ctx, &w->r, I, thread);
       } else {
         s = mfs_row_assemble(&w->r, pl, j->f, I);
       }
-      if (s == MFS_OK)
+      if (s == MFS_OK && !j->row)
         s = j->fn(j->ctx, &w->r, I, thread);
       if (s != MFS_OK) {
         *bad_row = I;
@@ -658,6 +667,8 @@ static void sweep_block_note(const sweep_job *j, sweep_ws *w, size_t r0, size_t 
 static mfs_status sweep_run(const sweep_job *j, size_t *bad)
 {
   const mfs_plan *pl = j->pl;
+  if (mfs_plan_transpose(pl) != MFS_OK)
+    return MFS_ENOMEM;
   const mfs_particles *p = mfs_plan_particles(pl);
   const size_t n = p->n, nq = mfs_plan_npoints(pl);
   const int need2 = j->f->euler != MFS_EULER_NONE || j->f->ls_beta > 0.0;
@@ -890,6 +901,8 @@ mfs_status mfs_assemble_pattern(const mfs_plan *pl, int ndof, const unsigned cha
   *out = NULL;
   if (!pl || ndof < 1 || ndof > 2)
     return MFS_EINVAL;
+  if (mfs_plan_transpose(pl) != MFS_OK)
+    return MFS_ENOMEM;
   const size_t n = mfs_plan_particles(pl)->n, nd = (size_t)ndof;
   const int nt = mfs_threads();
   const size_t cap = row_cap(pl);
@@ -1100,6 +1113,9 @@ typedef struct {
   uint64_t *bits; /* per thread: PATTERN_WORDS */
   size_t cap;
   size_t *rlen;   /* per particle: the free columns of its row */
+  double *acc;    /* scalar_2d, per thread: PATTERN_WORDS * 64 columns, zero */
+  int scalar_2d;  /* the forms: the stiffness of a 2D scalar model alone (fuse_scalar_2d) */
+  const mfs_forms *f;
   const mfs_plan *pl;
   const int *prow;
   int ndof, pu, nt;
@@ -1219,6 +1235,92 @@ static mfs_status fuse_row(void *vc, const mfs_row *r, size_t I, int thread)
   return MFS_OK;
 }
 
+/* Row I of the stiffness of a 2D scalar model alone (the forms of
+ * row_assemble_scalar_2d, its arithmetic: the same values, bit for bit)
+ * accumulated straight into a dense window of the columns, lo .. hi (the
+ * smallest first and the largest last entry of the sorted lists of I's
+ * points), with a bitmap of the columns met: they come out sorted, without
+ * a marker or a sort, and the window is cleared as it is read.  A window
+ * wider than PATTERN_WORDS: the general row and fuse_row. */
+static mfs_status fuse_scalar_2d(fuse_ctx *c, mfs_row *r, size_t I, int thread)
+{
+  size_t nq;
+  const int *Qs;
+  mfs_plan_particle_points(c->pl, I, &nq, &Qs);
+  int lo = INT32_MAX, hi = -1;
+  for (size_t t = 0; t < nq; t++) {
+    size_t e0 = r->tptr[Qs[t]], e1 = r->tptr[Qs[t] + 1];
+    if (e1 > e0) {
+      lo = r->tidx[e0] < lo ? r->tidx[e0] : lo;
+      hi = r->tidx[e1 - 1] > hi ? r->tidx[e1 - 1] : hi;
+    }
+  }
+  size_t nw = hi < lo ? 0 : ((size_t)(hi - lo) >> 6) + 1;
+  if (nw > PATTERN_WORDS) {
+    mfs_status st = mfs_row_assemble(r, c->pl, c->f, I);
+    return st == MFS_OK ? fuse_row(c, r, I, thread) : st;
+  }
+  fuse_buf *b = c->nt > 1 ? c->tb + thread : &c->out;
+  uint64_t *bits = c->bits + (size_t)thread * PATTERN_WORDS;
+  double *acc = c->acc + (size_t)thread * PATTERN_WORDS * 64;
+  const double rho = c->f->lumped_density, c0 = c->f->c[0];
+  double lump = 0.0;
+  memset(bits, 0, nw * sizeof *bits);
+  for (size_t t = 0; t < nq; t++) {
+    mfs_point pt;
+    row_point(r, (size_t)Qs[t], &pt);
+    const int nc = pt.ncomp;
+    const double *tab = pt.phi;
+    size_t iI = 0;
+    while (iI < pt.nn && pt.idx[iI] != (int)I) /* the lists hold I: its point sees it */
+      iI++;
+    if (iI == pt.nn)
+      iI = 0; /* as the general loop (never: I is in the list of each of its points) */
+    if (rho != 0.0)
+      lump += rho * pt.w * tab[iI * (size_t)nc];
+    const double *fi = tab + iI * (size_t)nc, wc = pt.w * c0, i1 = fi[1], i2 = fi[2];
+    for (size_t e = 0; e < pt.nn; e++) {
+      unsigned d = (unsigned)(pt.idx[e] - lo);
+      const double *fj = tab + e * (size_t)nc;
+      double g = 0.0;
+      g += i1 * fj[1];
+      g += i2 * fj[2];
+      acc[d] += wc * g;
+      bits[d >> 6] |= (uint64_t)1 << (d & 63);
+    }
+  }
+  int *ix = b->idx + b->len;
+  double *kv = b->kv + b->len;
+  size_t k = 0;
+  for (size_t w = 0; w < nw; w++)
+    for (uint64_t m = bits[w]; m; m &= m - 1) {
+      unsigned d = (unsigned)(w << 6) + (unsigned)__builtin_ctzll(m);
+      int J = lo + (int)d;
+      if (c->prow[J] >= 0) {
+        ix[k] = c->prow[J];
+        kv[k] = acc[d];
+        k++;
+      }
+      acc[d] = 0.0;
+    }
+  c->rlen[I] = k;
+  b->len += k;
+  if (c->m) /* sph: the particle masses rho V_I (eq. 51) */
+    c->m[c->prow[I]] = c->pu ? lump : c->density * (c->vol ? c->vol[I] : c->node_vol);
+  return MFS_OK;
+}
+
+/* The one sweep's row: the 2D scalar stiffness by its window, any other
+ * forms by the general row (mfs_row_assemble) and fuse_row. */
+static mfs_status fuse_any(void *vc, mfs_row *r, size_t I, int thread)
+{
+  fuse_ctx *c = vc;
+  if (c->scalar_2d)
+    return fuse_scalar_2d(c, r, I, thread);
+  mfs_status st = mfs_row_assemble(r, c->pl, c->f, I);
+  return st == MFS_OK ? fuse_row(c, r, I, thread) : st;
+}
+
 /* A thread's block after the blocks before it: appended to the matrix's. */
 static void fuse_block(void *vc, size_t r0, size_t r1, int thread)
 {
@@ -1270,6 +1372,8 @@ mfs_status mfs_assemble(const mfs_plan *pl, const mfs_material *mat, const unsig
   const mfs_particles *p = mfs_plan_particles(pl);
   if (mat->physics == MFS_PHYS_PLANE_STRAIN && p->dim != 2)
     return MFS_EINVAL;
+  if (mfs_plan_transpose(pl) != MFS_OK)
+    return MFS_ENOMEM;
   const size_t n = p->n;
   const int nd = mfs_physics_ndof(mat->physics), nt = mfs_threads();
   const size_t nd2 = (size_t)nd * (size_t)nd;
@@ -1294,7 +1398,11 @@ mfs_status mfs_assemble(const mfs_plan *pl, const mfs_material *mat, const unsig
   c.rlen = mfs_calloc(n ? n : 1, sizeof *c.rlen);
   c.srt = mfs_malloc((size_t)nt * cap * sizeof *c.srt);
   c.bits = mfs_malloc((size_t)nt * PATTERN_WORDS * sizeof *c.bits);
-  if (!prow || !c.rlen || !c.srt || !c.bits)
+  c.f = &f;
+  c.scalar_2d = p->dim == 2 && nd == 1 && K && !M;
+  if (c.scalar_2d)
+    c.acc = mfs_calloc((size_t)nt * PATTERN_WORDS * 64, sizeof *c.acc);
+  if (!prow || !c.rlen || !c.srt || !c.bits || (c.scalar_2d && !c.acc))
     goto done;
   /* the matrix's entries at their bound: the pages past the rows' are never
    * touched, and the block is shrunk at the end */
@@ -1309,7 +1417,7 @@ mfs_status mfs_assemble(const mfs_plan *pl, const mfs_material *mat, const unsig
   }
   size_t nf = free_rows(n, fixed, prow, NULL);
   sweep_job j = {.pl = pl, .f = &f, .skip = fixed, .fn = fuse_row, .ctx = &c,
-                 .block_fn = nt > 1 ? fuse_block : NULL, .cap = cap};
+                 .block_fn = nt > 1 ? fuse_block : NULL, .cap = cap, .row = fuse_any};
   if ((st = sweep_run(&j, bad)) != MFS_OK)
     goto done;
   st = MFS_ENOMEM;
@@ -1361,6 +1469,7 @@ done:
   mfs_free(c.srt);
   mfs_free(c.bits);
   mfs_free(c.rlen);
+  mfs_free(c.acc);
   mfs_free(prow);
   return st;
 }
