@@ -390,6 +390,7 @@ static int default_ncv(const mfs_eig_opts *o, int nev, size_t n)
 typedef struct {
   size_t n;
   size_t *ptr;
+  size_t *mid; /* n: row i's first entry of a column past its block (the band's) */
   int *idx;
   double *val, *diag;
   size_t cut[SYM_BLOCKS + 1];  /* block b: rows cut[b] .. cut[b+1]-1 */
@@ -400,6 +401,7 @@ typedef struct {
 static void sym_free(sym_csr *A)
 {
   mfs_free(A->ptr);
+  mfs_free(A->mid);
   mfs_free(A->idx);
   mfs_free(A->val);
   mfs_free(A->diag);
@@ -464,10 +466,18 @@ static int sym_from(const mfs_csr *K, const double *s, sym_csr *A)
     w = 0;
   }
   A->z = mfs_malloc((A->zoff[SYM_BLOCKS] ? A->zoff[SYM_BLOCKS] : 1) * sizeof *A->z);
-  if (!A->z) {
+  A->mid = mfs_malloc((n ? n : 1) * sizeof *A->mid);
+  if (!A->z || !A->mid) {
     sym_free(A);
     return MFS_ENOMEM;
   }
+  for (int b = 0; b < SYM_BLOCKS; b++) /* the rows are sorted: the band's columns last */
+    for (size_t i = A->cut[b]; i < A->cut[b + 1]; i++) {
+      size_t e = A->ptr[i];
+      while (e < A->ptr[i + 1] && (size_t)A->idx[e] < A->cut[b + 1])
+        e++;
+      A->mid[i] = e;
+    }
   return MFS_OK;
 }
 
@@ -475,7 +485,7 @@ static int sym_from(const mfs_csr *K, const double *s, sym_csr *A)
  * block by block (sym_csr), then the band buffers in the order of the blocks. */
 static void sym_matvec(const sym_csr *A, const double *restrict x, double *restrict y)
 {
-  const size_t *restrict ptr = A->ptr;
+  const size_t *restrict ptr = A->ptr, *restrict mid = A->mid;
   const int *restrict idx = A->idx;
   const double *restrict val = A->val, *restrict dg = A->diag;
   double *restrict z = A->z;
@@ -493,13 +503,18 @@ static void sym_matvec(const sym_csr *A, const double *restrict x, double *restr
       zb[k] = 0.0;
     for (size_t i = lo; i < hi; i++) {
       double xi = x[i], s = 0.0;
-      for (size_t e = ptr[i]; e < ptr[i + 1]; e++) {
+      size_t e = ptr[i], em = mid[i], e1 = ptr[i + 1];
+      /* the columns are sorted: those of the block first, then the band's
+       * (the same terms in the same order as one loop with a test) */
+      for (; e < em; e++) {
         size_t j = (size_t)idx[e];
         s += val[e] * x[j];
-        if (j < hi)
-          y[j] += val[e] * xi;
-        else
-          zb[j - hi] += val[e] * xi;
+        y[j] += val[e] * xi;
+      }
+      for (; e < e1; e++) {
+        size_t j = (size_t)idx[e];
+        s += val[e] * x[j];
+        zb[j - hi] += val[e] * xi;
       }
       y[i] += s;
     }
