@@ -624,5 +624,12 @@ int main(void)
       check_fused(&hex, "stress-hex", &mfs_shape_rl, MFS_PHYS_PLANE_STRAIN, !fix, t, fix);
       check_fused(&sqp, "stress-quad", &mfs_shape_kb, MFS_PHYS_PLANE_STRAIN, fix, t, fix);
     }
+  /* several blocks of rows (2048 with a table, at least 1024 streamed), so
+   * that with threads the blocks land in their places in turn */
+  mfs_lattice_spec big = {2, MFS_LATTICE_SQUARE, 61, 59, DX, 1.0, 0, MFS_CELLS_QUAD, 0.3, 4142};
+  for (int t = 0; t < 2; t++) {
+    check_fused(&big, "stress-quad", &mfs_shape_mls, MFS_PHYS_SCALAR, 0, t, 1);
+    check_fused(&big, "gauss2", &mfs_shape_mls, MFS_PHYS_PLANE_STRAIN, 1, t, 0);
+  }
   return check_summary("test_assemble");
 }

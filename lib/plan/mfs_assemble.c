@@ -525,9 +525,6 @@ typedef struct {
   const int *prow, *part;
   mfs_row_fn fn;
   void *ctx;
-  /* if not NULL: called after each block's rows (r0 .. r1), in the order of
-   * the blocks, one at a time (mfs_assemble's append) */
-  void (*block_fn)(void *ctx, size_t r0, size_t r1, int thread);
   size_t cap; /* the rows' capacity, or 0: row_cap(pl) */
   /* if not NULL (and no pattern): row I assembled and delivered by this
    * instead of mfs_row_assemble and fn (r: the thread's row workspace) */
@@ -751,22 +748,11 @@ static mfs_status sweep_run(const sweep_job *j, size_t *bad)
         }
       }
   }
-  if (j->block_fn) {
-#pragma omp parallel for ordered schedule(dynamic, 1) num_threads(nt)
-    for (size_t b = 0; b < nb; b++) {
-      const int t = mfs_thread_id();
-      size_t r1 = (b + 1) * B < n ? (b + 1) * B : n;
-      sweep_block_note(j, ws + t, b * B, r1, stream, t, &bad_q, &st_q, &bad_row, &st_row);
-#pragma omp ordered
-      j->block_fn(j->ctx, b * B, r1, t);
-    }
-  } else {
 #pragma omp parallel for schedule(dynamic, 1) num_threads(nt)
-    for (size_t b = 0; b < nb; b++) {
-      const int t = mfs_thread_id();
-      size_t r1 = (b + 1) * B < n ? (b + 1) * B : n;
-      sweep_block_note(j, ws + t, b * B, r1, stream, t, &bad_q, &st_q, &bad_row, &st_row);
-    }
+  for (size_t b = 0; b < nb; b++) {
+    const int t = mfs_thread_id();
+    size_t r1 = (b + 1) * B < n ? (b + 1) * B : n;
+    sweep_block_note(j, ws + t, b * B, r1, stream, t, &bad_q, &st_q, &bad_row, &st_row);
   }
   st = MFS_OK;
   if (bad_q != SIZE_MAX) { /* the table would have failed first, at its smallest point */
@@ -1066,18 +1052,18 @@ done:
 
 /* The entries the free rows can have, for blocks of B rows: s_I = min(n,
  * the sum of the list lengths of the points that see I) columns of ndof^2
- * entries.  *total: their sum; *block: the largest sum over a block; *cap:
- * the largest s_I over every row (row_cap's). */
+ * entries.  *total: their sum; *cap:
+ * the largest s_I over every row (row_cap's); bsum[b]: the sum over block b. */
 static void row_bounds(const mfs_plan *pl, const unsigned char *fixed, size_t B, size_t nd2,
-                       size_t *total, size_t *block, size_t *cap)
+                       size_t *total, size_t *bsum, size_t *cap)
 {
   const size_t n = mfs_plan_particles(pl)->n, nb = (n + B - 1) / B;
   const size_t *tptr;
   const int *tidx;
   const double *ttab;
   mfs_plan_table(pl, &tptr, &tidx, &ttab);
-  size_t tot = 0, blk = 0, cp = 1;
-#pragma omp parallel for reduction(+ : tot) reduction(max : blk, cp) schedule(static)
+  size_t tot = 0, cp = 1;
+#pragma omp parallel for reduction(+ : tot) reduction(max : cp) schedule(static)
   for (size_t b = 0; b < nb; b++) {
     size_t r1 = (b + 1) * B < n ? (b + 1) * B : n, sum = 0;
     for (size_t I = b * B; I < r1; I++) {
@@ -1092,10 +1078,9 @@ static void row_bounds(const mfs_plan *pl, const unsigned char *fixed, size_t B,
         sum += s * nd2;
     }
     tot += sum;
-    blk = sum > blk ? sum : blk;
+    bsum[b] = sum;
   }
   *total = tot;
-  *block = blk;
   *cap = cp < n ? cp : (n ? n : 1);
 }
 
@@ -1108,7 +1093,11 @@ typedef struct {
 
 typedef struct {
   fuse_buf out;   /* the matrices' entries */
-  fuse_buf *tb;   /* more than one thread: each one's block, appended to out in block order */
+  /* more than one thread: block k's entries go to out at boff[k] (the sum of
+   * the bounds of the blocks before it), blen[k] of them, through its
+   * thread's view tb[t] (block tblk[t]); compacted after the sweep */
+  fuse_buf *tb;
+  size_t *tblk, *boff, *blen, B;
   int *srt;       /* per thread: a row's free columns, sorted (cap each) */
   uint64_t *bits; /* per thread: PATTERN_WORDS */
   size_t cap;
@@ -1315,26 +1304,25 @@ static mfs_status fuse_scalar_2d(fuse_ctx *c, mfs_row *r, size_t I, int thread)
 static mfs_status fuse_any(void *vc, mfs_row *r, size_t I, int thread)
 {
   fuse_ctx *c = vc;
-  if (c->scalar_2d)
-    return fuse_scalar_2d(c, r, I, thread);
-  mfs_status st = mfs_row_assemble(r, c->pl, c->f, I);
-  return st == MFS_OK ? fuse_row(c, r, I, thread) : st;
-}
-
-/* A thread's block after the blocks before it: appended to the matrix's. */
-static void fuse_block(void *vc, size_t r0, size_t r1, int thread)
-{
-  (void)r0;
-  (void)r1;
-  fuse_ctx *c = vc;
-  fuse_buf *b = c->tb + thread;
-  memcpy(c->out.idx + c->out.len, b->idx, b->len * sizeof *b->idx);
-  if (b->kv)
-    memcpy(c->out.kv + c->out.len, b->kv, b->len * sizeof *b->kv);
-  if (b->mv)
-    memcpy(c->out.mv + c->out.len, b->mv, b->len * sizeof *b->mv);
-  c->out.len += b->len;
-  b->len = 0;
+  fuse_buf *b = c->nt > 1 ? c->tb + thread : &c->out;
+  size_t k = I / c->B;
+  if (c->nt > 1 && c->tblk[thread] != k) { /* the first row of a block: its view */
+    c->tblk[thread] = k;
+    *b = (fuse_buf){.idx = c->out.idx + c->boff[k],
+                    .kv = c->out.kv ? c->out.kv + c->boff[k] : NULL,
+                    .mv = c->out.mv ? c->out.mv + c->boff[k] : NULL};
+  }
+  mfs_status st;
+  if (c->scalar_2d) {
+    st = fuse_scalar_2d(c, r, I, thread);
+  } else {
+    st = mfs_row_assemble(r, c->pl, c->f, I);
+    if (st == MFS_OK)
+      st = fuse_row(c, r, I, thread);
+  }
+  if (c->nt > 1)
+    c->blen[k] = b->len;
+  return st;
 }
 
 static mfs_status fuse_buf_alloc(fuse_buf *b, size_t len, int k, int m)
@@ -1387,8 +1375,11 @@ mfs_status mfs_assemble(const mfs_plan *pl, const mfs_material *mat, const unsig
     f.lumped_density = mat->density;
   /* the blocks of mfs_row_sweep's, for the forms' order (1) */
   const size_t B = sweep_block(n, mfs_plan_order(pl) >= 1, nt);
-  size_t total, blk, cap;
-  row_bounds(pl, fixed, B, nd2, &total, &blk, &cap);
+  const size_t nb = (n + B - 1) / B;
+  size_t total, cap, *bsum = mfs_malloc((nb + 1) * sizeof *bsum);
+  if (!bsum)
+    return MFS_ENOMEM;
+  row_bounds(pl, fixed, B, nd2, &total, bsum, &cap);
   mfs_status st = MFS_ENOMEM;
   mfs_csr *A = NULL, *C = NULL;
   int *prow = mfs_malloc((n ? n : 1) * sizeof *prow);
@@ -1408,18 +1399,37 @@ mfs_status mfs_assemble(const mfs_plan *pl, const mfs_material *mat, const unsig
    * touched, and the block is shrunk at the end */
   if (fuse_buf_alloc(&c.out, total, K != NULL, M != NULL) != MFS_OK)
     goto done;
+  c.B = B;
   if (nt > 1) {
-    if (!(c.tb = mfs_calloc((size_t)nt, sizeof *c.tb)))
+    c.tb = mfs_calloc((size_t)nt, sizeof *c.tb);
+    c.tblk = mfs_malloc((size_t)nt * sizeof *c.tblk);
+    c.boff = bsum; /* the bounds' prefix sums, in place */
+    c.blen = mfs_calloc(nb ? nb : 1, sizeof *c.blen);
+    if (!c.tb || !c.tblk || !c.blen)
       goto done;
     for (int t = 0; t < nt; t++)
-      if (fuse_buf_alloc(c.tb + t, blk, K != NULL, M != NULL) != MFS_OK)
-        goto done;
-  }
+      c.tblk[t] = SIZE_MAX;
+    for (size_t k = 0, o = 0; k < nb; k++) {
+      size_t w = bsum[k];
+      bsum[k] = o;
+      o += w;
+    }
+  } /* one thread: the blocks in order, appended to out */
   size_t nf = free_rows(n, fixed, prow, NULL);
-  sweep_job j = {.pl = pl, .f = &f, .skip = fixed, .fn = fuse_row, .ctx = &c,
-                 .block_fn = nt > 1 ? fuse_block : NULL, .cap = cap, .row = fuse_any};
+  sweep_job j = {.pl = pl, .f = &f, .skip = fixed, .fn = fuse_row, .ctx = &c, .cap = cap,
+                 .row = fuse_any};
   if ((st = sweep_run(&j, bad)) != MFS_OK)
     goto done;
+  if (nt > 1) /* the blocks moved down to their places, in order */
+    for (size_t k = 0; k < nb; k++) {
+      size_t o = c.boff[k], l = c.blen[k], at = c.out.len;
+      memmove(c.out.idx + at, c.out.idx + o, l * sizeof *c.out.idx);
+      if (c.out.kv)
+        memmove(c.out.kv + at, c.out.kv + o, l * sizeof *c.out.kv);
+      if (c.out.mv)
+        memmove(c.out.mv + at, c.out.mv + o, l * sizeof *c.out.mv);
+      c.out.len += l;
+    }
   st = MFS_ENOMEM;
   const size_t nr = nf * (size_t)nd;
   if (!(A = mfs_calloc(1, sizeof *A)) || !(A->ptr = mfs_malloc((nr + 1) * sizeof *A->ptr)))
@@ -1462,10 +1472,10 @@ done:
   mfs_csr_free(A);
   mfs_csr_free(C);
   fuse_buf_free(&c.out);
-  if (c.tb)
-    for (int t = 0; t < nt; t++)
-      fuse_buf_free(c.tb + t);
   mfs_free(c.tb);
+  mfs_free(c.tblk);
+  mfs_free(c.blen);
+  mfs_free(bsum);
   mfs_free(c.srt);
   mfs_free(c.bits);
   mfs_free(c.rlen);
