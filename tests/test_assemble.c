@@ -472,6 +472,91 @@ static void check_stencil(int dim, mfs_lattice_kind lat, const char *rule,
   free(e);
 }
 
+/* mfs_assemble (pattern and values in one sweep) against the separate path
+ * mfs_assemble_pattern + mfs_assemble_fill: the same ptr, idx and values bit
+ * for bit, and the same lumped masses, with every third particle fixed (and
+ * with none), with the plan's table and without one (streamed). */
+static void check_fused(const mfs_lattice_spec *ls, const char *rule_name, const mfs_shape_type *sh,
+                        mfs_physics_kind phys, int consistent, int table, int fix)
+{
+  char ctx[160];
+  snprintf(ctx, sizeof ctx, "fused %dD %s %s %s %s %s %s", ls->dim, rule_name, sh->name,
+           phys == MFS_PHYS_PLANE_STRAIN ? "plane-strain" : "scalar",
+           consistent ? "consistent" : "lumped", table ? "table" : "streamed",
+           fix ? "fixed" : "free");
+  mfs_status st;
+  const mfs_quad_type *rule = mfs_quad_find(rule_name);
+  CHECK(rule != NULL, "%s: rule", ctx);
+  if (!rule)
+    return;
+  mfs_disc ps = plan_disc(&mfs_kernel_quartic, sh, 2.385);
+  mfs_particles *p = mfs_lattice_alloc(ls, &st);
+  mfs_quad *q = p ? mfs_quad_alloc(rule, p, &st) : NULL;
+  mfs_plan *pl = q ? mfs_plan_alloc(&ps, p, q, &st) : NULL;
+  if (pl && table)
+    st = mfs_plan_tabulate(pl, 1, NULL);
+  CHECK(pl && st == MFS_OK, "%s: plan status %d", ctx, st);
+  if (!pl || st != MFS_OK)
+    goto out;
+  mfs_material mat = {.physics = phys, .modulus = 1.3791, .poisson = 0.31, .density = 3.1};
+  size_t n = p->n, nd = (size_t)mfs_physics_ndof(phys);
+  unsigned char *fixed = calloc(n, 1);
+  double *m1 = calloc(n * nd, sizeof *m1), *m2 = calloc(n * nd, sizeof *m2);
+  for (size_t I = 0; I < n && fix; I++)
+    fixed[I] = I % 3 == 1;
+  const unsigned char *fx = fix ? fixed : NULL;
+  mfs_csr *K1 = NULL, *M1 = NULL, *K2 = NULL, *M2 = NULL;
+  st = mfs_assemble(pl, &mat, fx, &K1, consistent ? &M1 : NULL, consistent ? NULL : m1, NULL);
+  CHECK(st == MFS_OK && K1 && (!consistent || M1), "%s: mfs_assemble status %d", ctx, st);
+  mfs_status s2 = mfs_assemble_pattern(pl, (int)nd, fx, &K2);
+  if (s2 == MFS_OK && consistent)
+    s2 = mfs_assemble_pattern(pl, (int)nd, fx, &M2);
+  if (s2 == MFS_OK)
+    s2 = mfs_assemble_fill(pl, &mat, fx, K2, M2, consistent ? NULL : m2, NULL);
+  CHECK(s2 == MFS_OK, "%s: pattern + fill status %d", ctx, s2);
+  if (st == MFS_OK && s2 == MFS_OK) {
+    size_t nf = 0;
+    for (size_t I = 0; I < n; I++)
+      nf += !(fx && fx[I]);
+    CHECK(K1->nrow == nf * nd && K1->ncol == nf * nd && K1->nrow == K2->nrow,
+          "%s: order %zu, separate %zu, free dofs %zu", ctx, K1->nrow, K2->nrow, nf * nd);
+    size_t dp = 0, di = 0, dk = 0, dm = 0, dl = 0, nnz = K2->ptr[K2->nrow];
+    for (size_t i = 0; i <= K1->nrow && K1->nrow == K2->nrow; i++)
+      dp += K1->ptr[i] != K2->ptr[i];
+    CHECK(dp == 0, "%s: %zu row pointers differ", ctx, dp);
+    if (dp == 0) {
+      for (size_t e = 0; e < nnz; e++) {
+        di += K1->idx[e] != K2->idx[e];
+        dk += K1->val[e] != K2->val[e];
+        if (consistent)
+          dm += M1->idx[e] != M2->idx[e] || M1->val[e] != M2->val[e] || M1->ptr[0] != 0;
+      }
+      for (size_t i = 0; i < K1->nrow && di == 0; i++) /* sorted within rows */
+        for (size_t e = K1->ptr[i] + 1; e < K1->ptr[i + 1]; e++)
+          di += K1->idx[e - 1] >= K1->idx[e];
+      for (size_t i = 0; i < nf * nd && !consistent; i++)
+        dl += m1[i] != m2[i];
+    }
+    CHECK(di == 0 && dk == 0 && dm == 0 && dl == 0,
+          "%s: %zu columns, %zu K values, %zu M entries, %zu lumped masses differ (of %zu)", ctx,
+          di, dk, dm, dl, nnz);
+    if (consistent)
+      CHECK(M1->ptr != K1->ptr && M1->idx != K1->idx && M1->ptr[M1->nrow] == nnz,
+            "%s: M has its own copy of the pattern", ctx);
+  }
+  mfs_csr_free(K1);
+  mfs_csr_free(M1);
+  mfs_csr_free(K2);
+  mfs_csr_free(M2);
+  free(fixed);
+  free(m1);
+  free(m2);
+out:
+  mfs_plan_free(pl);
+  mfs_quad_free(q);
+  mfs_particles_free(p);
+}
+
 int main(void)
 {
   const mfs_shape_type *shapes[] = {&mfs_shape_sph, &mfs_shape_shepard, &mfs_shape_mls,
@@ -530,5 +615,21 @@ int main(void)
   check_stencil(2, MFS_LATTICE_SQUARE, "gauss2", &mfs_kernel_cubic, &mfs_shape_sph, 2.0, 1);
   check_stencil(2, MFS_LATTICE_HEX, "stress-hex", &mfs_kernel_quartic, &mfs_shape_rl, 2.0, 0);
   check_stencil(1, MFS_LATTICE_LINE, "stress", &mfs_kernel_cubic, &mfs_shape_kb, 1.5, 1);
+  /* the one sweep against the separate pattern and fill */
+  for (int t = 0; t < 2; t++)
+    for (int fix = 0; fix < 2; fix++) {
+      check_fused(&line, "gauss2", &mfs_shape_mls, MFS_PHYS_SCALAR, fix, t, fix);
+      check_fused(&sq, "stress-quad", &mfs_shape_mls, MFS_PHYS_SCALAR, 0, t, fix);
+      check_fused(&sq, "gauss2", &mfs_shape_sph, MFS_PHYS_SCALAR, 1, t, fix);
+      check_fused(&hex, "stress-hex", &mfs_shape_rl, MFS_PHYS_PLANE_STRAIN, !fix, t, fix);
+      check_fused(&sqp, "stress-quad", &mfs_shape_kb, MFS_PHYS_PLANE_STRAIN, fix, t, fix);
+    }
+  /* several blocks of rows (2048 with a table, at least 1024 streamed), so
+   * that with threads the blocks land in their places in turn */
+  mfs_lattice_spec big = {2, MFS_LATTICE_SQUARE, 61, 59, DX, 1.0, 0, MFS_CELLS_QUAD, 0.3, 4142};
+  for (int t = 0; t < 2; t++) {
+    check_fused(&big, "stress-quad", &mfs_shape_mls, MFS_PHYS_SCALAR, 0, t, 1);
+    check_fused(&big, "gauss2", &mfs_shape_mls, MFS_PHYS_PLANE_STRAIN, 1, t, 0);
+  }
   return check_summary("test_assemble");
 }

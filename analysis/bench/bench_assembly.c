@@ -17,14 +17,17 @@
  *
  * Phases:
  *   lattice, quadrature     mfs_lattice_alloc, mfs_quad_alloc
- *   neighbour_search        mfs_plan_alloc: cell lists, the lists of the points and their transpose
+ *   neighbour_search        mfs_plan_alloc: cell lists and the lists of the points (their
+ *                           transpose is built by the assembly, mfs_plan_transpose)
  *   shape_tables            (table) mfs_plan_tabulate
- *   pattern                 mfs_assemble_pattern: the CSR build (row lengths, sorted
- *                           columns, ptr and idx); the fill then writes each row in place
- *   fill                    mfs_assemble_fill: K and the lumped mass, one sweep (model:
- *                           with the shape functions' evaluation)
- *   total                   the sum; its ratio column: pattern / (pattern + fill), the
- *                           share of the CSR build in the assembly
+ *   assembly                mfs_assemble: K (its pattern and values) and the lumped mass in
+ *                           one sweep over the rows (model: with the shape functions'
+ *                           evaluation), each row's columns sorted and appended in order
+ *   total                   the sum of the phases above
+ *   separate_pattern        after the total (not in it): the path of the solvers that reuse
+ *   separate_fill           a pattern, mfs_assemble_pattern then mfs_assemble_fill into it;
+ *                           error: the entries (ptr, idx; values and masses) that differ
+ *                           from assembly's (0: the same bits; any other count fails the run)
  *   solver2d_alloc          (solver) the whole mfs_solver2d_alloc
  *   reference_shape_tables  (table) the same table by a straightforward per-point dense MLS:
  *                           3x3 moment matrix in coordinates relative to the evaluation point,
@@ -34,9 +37,9 @@
  *
  * error:  lattice: |sum V - area| / area; quadrature: |sum w - area| / area;
  *         shape_tables: max |sum_J phi_J - 1| and |sum_J grad phi_J| over the points;
- *         fill: |K 1|_inf / max |K_IJ| (and the mass: |sum m - rho area| / (rho area) in
+ *         assembly: |K 1|_inf / max |K_IJ| (and the mass: |sum m - rho area| / (rho area) in
  *         mass_error); reference_*: max abs difference from the shape_tables table.
- * ratio:  reference_*: reference seconds / shape_tables seconds; total: the CSR share.
+ * ratio:  reference_*: reference seconds / shape_tables seconds.
  * seconds is wall-clock time; user_s and sys_s the CPU time of the phase (sys_s is
  * mostly page faults on first touch of new memory); threads the OpenMP threads.
  * peak_rss_mb: the process's peak so far; nnz_K the entries of K; bytes_per_nnz the
@@ -295,8 +298,8 @@ static int bench(FILE *f, int n_side, int rep, bench_mode mode, int checks, doub
   mfs_particles *p = NULL;
   mfs_quad *q = NULL;
   mfs_plan *pl = NULL;
-  mfs_csr *K = NULL;
-  double *m = NULL, *ref = NULL;
+  mfs_csr *K = NULL, *K2 = NULL;
+  double *m = NULL, *m2 = NULL, *ref = NULL;
   row_ctx r = {f, n_side, rep, mode_names[mode], (size_t)n_side * (size_t)n_side, 0, 0, bps};
   if (mode == MODE_SOLVER)
     return bench_solver2d(&r, n_side);
@@ -358,34 +361,68 @@ static int bench(FILE *f, int n_side, int rep, bench_mode mode, int checks, doub
     t_total = add(t_total, t_sh);
   }
 
-  t0 = now();
-  st = mfs_assemble_pattern(pl, 1, NULL, &K);
-  stamp t_pat = since(t0);
-  what = "pattern";
-  if (st != MFS_OK)
-    goto done;
-  r.nnz = K->ptr[K->nrow];
-  row(&r, "pattern", t_pat, -1.0, -1.0, 4.0 * (double)r.nnz + 8.0 * (double)K->nrow);
   st = MFS_ENOMEM;
   m = malloc(p->n * sizeof *m);
   if (!m)
     goto done;
   t0 = now();
-  st = mfs_assemble_fill(pl, &mat, NULL, K, NULL, m, NULL);
-  stamp t_fill = since(t0);
-  what = "fill";
+  st = mfs_assemble(pl, &mat, NULL, &K, NULL, m, NULL);
+  stamp t_asm = since(t0);
+  what = "assembly";
   if (st != MFS_OK)
     goto done;
+  r.nnz = K->ptr[K->nrow];
   double sm = 0.0;
   for (size_t i = 0; i < p->n; i++)
     sm += m[i];
   fprintf(stderr, "bench_assembly: n = %d, %s: mass error %.3e\n", n_side, r.mode,
           fabs(sm - mat.density * area) / (mat.density * area));
-  row(&r, "fill", t_fill, k_ones(K), -1.0, 8.0 * (double)r.nnz + 8.0 * (double)p->n);
-  t_total = add(t_total, add(t_pat, t_fill));
-  row(&r, "total", t_total, -1.0, t_pat.wall / (t_pat.wall + t_fill.wall),
+  row(&r, "assembly", t_asm, k_ones(K), -1.0,
+      12.0 * (double)r.nnz + 8.0 * (double)(K->nrow + p->n));
+  t_total = add(t_total, t_asm);
+  row(&r, "total", t_total, -1.0, -1.0,
       12.0 * (double)r.nnz + 8.0 * (double)(K->nrow + p->n) +
           (mode == MODE_TABLE ? 32.0 : 8.0) * (double)pnnz);
+  /* the separate path of the solvers (a pattern reused): after the total's
+   * peak, not in it; error: the entries that differ from the one sweep's */
+  t0 = now();
+  st = mfs_assemble_pattern(pl, 1, NULL, &K2);
+  stamp t_pat = since(t0);
+  what = "separate_pattern";
+  if (st != MFS_OK)
+    goto done;
+  size_t ndiff = K2->ptr[K2->nrow] != r.nnz;
+  for (size_t i = 0; i <= K->nrow && !ndiff; i++)
+    ndiff += K2->ptr[i] != K->ptr[i];
+  for (size_t e = 0; e < r.nnz && !ndiff; e++)
+    ndiff += K2->idx[e] != K->idx[e];
+  row(&r, "separate_pattern", t_pat, (double)ndiff, -1.0,
+      4.0 * (double)r.nnz + 8.0 * (double)K->nrow);
+  if (ndiff)
+    fprintf(stderr, "bench_assembly: n = %d, %s: the separate pattern differs\n", n_side, r.mode);
+  st = ndiff ? MFS_EINVAL : MFS_ENOMEM;
+  if (ndiff || !(m2 = malloc(p->n * sizeof *m2)))
+    goto done;
+  t0 = now();
+  st = mfs_assemble_fill(pl, &mat, NULL, K2, NULL, m2, NULL);
+  stamp t_fill = since(t0);
+  what = "separate_fill";
+  if (st != MFS_OK)
+    goto done;
+  for (size_t e = 0; e < r.nnz; e++)
+    ndiff += K2->val[e] != K->val[e];
+  for (size_t i = 0; i < p->n; i++)
+    ndiff += m2[i] != m[i];
+  row(&r, "separate_fill", t_fill, (double)ndiff, -1.0,
+      8.0 * (double)r.nnz + 8.0 * (double)p->n);
+  st = MFS_EINVAL;
+  if (ndiff) {
+    fprintf(stderr, "bench_assembly: n = %d, %s: %zu values of the separate fill differ\n",
+            n_side, r.mode, ndiff);
+    goto done;
+  }
+  mfs_csr_free(K2);
+  K2 = NULL;
   mfs_csr_free(K);
   K = NULL;
   if (!checks || mode != MODE_TABLE) {
@@ -417,7 +454,9 @@ done:
     fprintf(stderr, "bench_assembly: n = %d: %s: %s\n", n_side, what, mfs_strerror(st));
   free(ref);
   free(m);
+  free(m2);
   mfs_csr_free(K);
+  mfs_csr_free(K2);
   mfs_plan_free(pl);
   mfs_quad_free(q);
   mfs_particles_free(p);

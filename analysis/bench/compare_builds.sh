@@ -9,7 +9,7 @@
 #   solver       bench_solver 100000 200: the step-loop seconds of each (frame, dilation)
 #   assembly     bench_assembly 500: the seconds of each phase of the table pipeline, the
 #                total and K_and_M (K and the lumped mass: assembly_K + assembly_lumped_M,
-#                or pattern + fill)
+#                or pattern + fill, or the one-sweep assembly)
 #   dispersion   bench_dispersion: seconds of each (family, phase)
 #   eigs         bench_eigs 316: the model setup, bound and eigenvalue seconds
 # Also prints the load average before and after.  The sizes can be changed with
@@ -29,11 +29,11 @@ run() {
   solver) "$bin/bench_solver" ${SOLVER_ARGS:-100000 200} | awk -F, 'NR>1{print $3"_D"$4","$6}' ;;
   assembly) # the table pipeline (the only one of the old benchmark; a newer one also has
             # modes model and solver): its phases, and K_and_M = the old assembly_K +
-            # assembly_lumped_M against the newer pattern + fill
+            # assembly_lumped_M against the newer pattern + fill or assembly
             "$bin/bench_assembly" ${ASSEMBLY_ARGS:-500} | awk -F, 'NR==1{for(k=1;k<=NF;k++)h[$k]=k; next}
             ("mode" in h) && $h["mode"] != "table" {next}
             {print $h["phase"]","$h["seconds"]}
-            $h["phase"] ~ /^(assembly_K|assembly_lumped_M|pattern|fill)$/ {km += $h["seconds"]}
+            $h["phase"] ~ /^(assembly_K|assembly_lumped_M|pattern|fill|assembly)$/ {km += $h["seconds"]}
             END{print "K_and_M,"km}' ;;
   dispersion) "$bin/bench_dispersion" 2>/dev/null | awk -F, 'NR==1{for(k=1;k<=NF;k++)h[$k]=k
             t = ("seconds_median" in h) ? h["seconds_median"] : h["seconds"]; next}

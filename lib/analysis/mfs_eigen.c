@@ -423,7 +423,10 @@ static int default_ncv(const mfs_eig_opts *o, int nev, size_t n)
  * per product cost more than it gained on the shared machine (the anti-plane
  * model at 10^4 nodes, 2 10^5 entries: 671 products in 0.53 s on one
  * thread, 0.76 s on two with OMP_WAIT_POLICY=passive, 1.8 s with libgomp's
- * default, at a load of 4-8; docs/benchmarks.md).  The sums are the same. */
+ * default, at a load of 4-8; docs/benchmarks.md); with one thread too, and
+ * then without a parallel region (the outlined loop of a one-thread region
+ * ran about 20 % slower than the same loop inline, bench_eigs 316).  The
+ * sums are the same. */
 #define SYM_BLOCKS 8
 #define SYM_PARALLEL_MIN ((size_t)1 << 21)
 typedef struct {
@@ -512,40 +515,56 @@ static int sym_from(const mfs_csr *K, const double *s, sym_csr *A)
 
 /* y = A x from the upper triangle: y_i += a_ij x_j and y_j += a_ij x_i,
  * block by block (sym_csr), then the band buffers in the order of the blocks. */
-static void sym_matvec(const sym_csr *A, const double *restrict x, double *restrict y)
+/* Block b of the product: its rows into y, the band's terms into its buffer. */
+static inline void sym_block(const sym_csr *A, int b, const double *restrict x, double *restrict y)
 {
   const size_t *restrict ptr = A->ptr;
   const int *restrict idx = A->idx;
   const double *restrict val = A->val, *restrict dg = A->diag;
-  double *restrict z = A->z;
-  const int nt = mfs_omp_threads(), par = A->ptr[A->n] >= SYM_PARALLEL_MIN;
-  (void)nt;
-  (void)par;
-  MFS_OMP("omp parallel for schedule(static) num_threads(nt) if (par)")
-  for (int b = 0; b < SYM_BLOCKS; b++) {
-    size_t lo = A->cut[b], hi = A->cut[b + 1];
-    double *restrict zb = z + A->zoff[b];
-    size_t wb = A->zoff[b + 1] - A->zoff[b];
-    for (size_t i = lo; i < hi; i++)
-      y[i] = dg[i] * x[i];
-    for (size_t k = 0; k < wb; k++)
-      zb[k] = 0.0;
-    for (size_t i = lo; i < hi; i++) {
-      double xi = x[i], s = 0.0;
-      for (size_t e = ptr[i]; e < ptr[i + 1]; e++) {
-        size_t j = (size_t)idx[e];
-        s += val[e] * x[j];
-        if (j < hi)
-          y[j] += val[e] * xi;
-        else
-          zb[j - hi] += val[e] * xi;
-      }
-      y[i] += s;
+  size_t lo = A->cut[b], hi = A->cut[b + 1];
+  double *restrict zb = A->z + A->zoff[b];
+  size_t wb = A->zoff[b + 1] - A->zoff[b];
+  for (size_t i = lo; i < hi; i++)
+    y[i] = dg[i] * x[i];
+  for (size_t k = 0; k < wb; k++)
+    zb[k] = 0.0;
+  for (size_t i = lo; i < hi; i++) {
+    double xi = x[i], s = 0.0;
+    size_t e = ptr[i], e1 = ptr[i + 1], em = e1;
+    /* the columns are sorted: those of the block first, then the band's,
+     * which only the rows near the block's end have (the same terms in the
+     * same order as one loop with a test per entry) */
+    if (e1 > e && (size_t)idx[e1 - 1] >= hi)
+      while (em > e && (size_t)idx[em - 1] >= hi)
+        em--;
+    for (; e < em; e++) {
+      size_t j = (size_t)idx[e];
+      s += val[e] * x[j];
+      y[j] += val[e] * xi;
     }
+    for (; e < e1; e++) {
+      size_t j = (size_t)idx[e];
+      s += val[e] * x[j];
+      zb[j - hi] += val[e] * xi;
+    }
+    y[i] += s;
+  }
+}
+
+static void sym_matvec(const sym_csr *A, const double *restrict x, double *restrict y)
+{
+  const int nt = mfs_omp_threads(), par = nt > 1 && A->ptr[A->n] >= SYM_PARALLEL_MIN;
+  if (par) {
+    MFS_OMP("omp parallel for schedule(static) num_threads(nt)")
+    for (int b = 0; b < SYM_BLOCKS; b++)
+      sym_block(A, b, x, y);
+  } else { /* the same blocks on the calling thread, without a parallel region */
+    for (int b = 0; b < SYM_BLOCKS; b++)
+      sym_block(A, b, x, y);
   }
   for (int b = 0; b < SYM_BLOCKS; b++) {
     size_t hi = A->cut[b + 1], wb = A->zoff[b + 1] - A->zoff[b];
-    const double *zb = z + A->zoff[b];
+    const double *zb = A->z + A->zoff[b];
     for (size_t k = 0; k < wb; k++)
       y[hi + k] += zb[k];
   }

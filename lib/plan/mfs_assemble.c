@@ -128,6 +128,10 @@ nomem:
 
 mfs_status mfs_row_init(mfs_row *r, const mfs_plan *pl, const mfs_forms *f)
 {
+  memset(r, 0, sizeof *r);
+  mfs_status st = mfs_plan_transpose(pl);
+  if (st != MFS_OK)
+    return st;
   return row_init_cap(r, pl, f, row_cap(pl), 1);
 }
 
@@ -521,6 +525,10 @@ typedef struct {
   const int *prow, *part;
   mfs_row_fn fn;
   void *ctx;
+  size_t cap; /* the rows' capacity, or 0: row_cap(pl) */
+  /* if not NULL (and no pattern): row I assembled and delivered by this
+   * instead of mfs_row_assemble and fn (r: the thread's row workspace) */
+  mfs_status (*row)(void *ctx, mfs_row *r, size_t I, int thread);
 } sweep_job;
 
 static void sweep_ws_free(sweep_ws *w)
@@ -612,10 +620,12 @@ static void sweep_block_run(const sweep_job *j, sweep_ws *w, size_t r0, size_t r
         for (size_t c = 0; c < len; c++)
           w->cols[c] = j->part[(size_t)j->pat->idx[e0 + c * nd] / nd];
         s = len <= w->r.cap ? row_assemble_into(&w->r, pl, j->f, I, w->cols, len) : MFS_EINVAL;
+      } else if (j->row) {
+        s = j->row(j->ctx, &w->r, I, thread);
       } else {
         s = mfs_row_assemble(&w->r, pl, j->f, I);
       }
-      if (s == MFS_OK)
+      if (s == MFS_OK && !j->row)
         s = j->fn(j->ctx, &w->r, I, thread);
       if (s != MFS_OK) {
         *bad_row = I;
@@ -628,16 +638,41 @@ static void sweep_block_run(const sweep_job *j, sweep_ws *w, size_t r0, size_t r
       w->slot[w->need[k]] = -1;
 }
 
+/* sweep_block_run, its failures merged into the sweep's (the smallest). */
+static void sweep_block_note(const sweep_job *j, sweep_ws *w, size_t r0, size_t r1, int stream,
+                             int thread, size_t *bad_q, mfs_status *st_q, size_t *bad_row,
+                             mfs_status *st_row)
+{
+  size_t bq = SIZE_MAX, br = SIZE_MAX;
+  mfs_status sq = MFS_OK, sr = MFS_OK;
+  sweep_block_run(j, w, r0, r1, stream, thread, &bq, &sq, &br, &sr);
+  if (bq != SIZE_MAX || br != SIZE_MAX) {
+#pragma omp critical(mfs_row_sweep)
+    {
+      if (bq < *bad_q) {
+        *bad_q = bq;
+        *st_q = sq;
+      }
+      if (br < *bad_row) {
+        *bad_row = br;
+        *st_row = sr;
+      }
+    }
+  }
+}
+
 static mfs_status sweep_run(const sweep_job *j, size_t *bad)
 {
   const mfs_plan *pl = j->pl;
+  if (mfs_plan_transpose(pl) != MFS_OK)
+    return MFS_ENOMEM;
   const mfs_particles *p = mfs_plan_particles(pl);
   const size_t n = p->n, nq = mfs_plan_npoints(pl);
   const int need2 = j->f->euler != MFS_EULER_NONE || j->f->ls_beta > 0.0;
   const int order = need2 ? 2 : 1, table = mfs_plan_order(pl) >= order, stream = !table;
   const int nt = mfs_threads();
   const size_t B = sweep_block(n, table, nt), nb = (n + B - 1) / B;
-  const size_t cap = row_cap(pl);
+  const size_t cap = j->cap ? j->cap : row_cap(pl);
   mfs_status st = MFS_ENOMEM;
   sweep_ws *ws = mfs_calloc((size_t)nt, sizeof *ws);
   size_t *bnp = NULL, *bne = NULL;
@@ -716,22 +751,8 @@ static mfs_status sweep_run(const sweep_job *j, size_t *bad)
 #pragma omp parallel for schedule(dynamic, 1) num_threads(nt)
   for (size_t b = 0; b < nb; b++) {
     const int t = mfs_thread_id();
-    size_t r1 = (b + 1) * B < n ? (b + 1) * B : n, bq = SIZE_MAX, br = SIZE_MAX;
-    mfs_status sq = MFS_OK, sr = MFS_OK;
-    sweep_block_run(j, ws + t, b * B, r1, stream, t, &bq, &sq, &br, &sr);
-    if (bq != SIZE_MAX || br != SIZE_MAX) {
-#pragma omp critical(mfs_row_sweep)
-      {
-        if (bq < bad_q) {
-          bad_q = bq;
-          st_q = sq;
-        }
-        if (br < bad_row) {
-          bad_row = br;
-          st_row = sr;
-        }
-      }
-    }
+    size_t r1 = (b + 1) * B < n ? (b + 1) * B : n;
+    sweep_block_note(j, ws + t, b * B, r1, stream, t, &bad_q, &st_q, &bad_row, &st_row);
   }
   st = MFS_OK;
   if (bad_q != SIZE_MAX) { /* the table would have failed first, at its smallest point */
@@ -866,6 +887,8 @@ mfs_status mfs_assemble_pattern(const mfs_plan *pl, int ndof, const unsigned cha
   *out = NULL;
   if (!pl || ndof < 1 || ndof > 2)
     return MFS_EINVAL;
+  if (mfs_plan_transpose(pl) != MFS_OK)
+    return MFS_ENOMEM;
   const size_t n = mfs_plan_particles(pl)->n, nd = (size_t)ndof;
   const int nt = mfs_threads();
   const size_t cap = row_cap(pl);
@@ -1024,22 +1047,449 @@ done:
   return st;
 }
 
-/* The matrix of the forms over every particle: the pattern, then its values. */
+/* ------------------------------------------------------------------ */
+/* one-shot assembly: the pattern and the values in one sweep            */
+
+/* The entries the free rows can have, for blocks of B rows: s_I = min(n,
+ * the sum of the list lengths of the points that see I) columns of ndof^2
+ * entries.  *total: their sum; *cap:
+ * the largest s_I over every row (row_cap's); bsum[b]: the sum over block b. */
+static void row_bounds(const mfs_plan *pl, const unsigned char *fixed, size_t B, size_t nd2,
+                       size_t *total, size_t *bsum, size_t *cap)
+{
+  const size_t n = mfs_plan_particles(pl)->n, nb = (n + B - 1) / B;
+  const size_t *tptr;
+  const int *tidx;
+  const double *ttab;
+  mfs_plan_table(pl, &tptr, &tidx, &ttab);
+  size_t tot = 0, cp = 1;
+#pragma omp parallel for reduction(+ : tot) reduction(max : cp) schedule(static)
+  for (size_t b = 0; b < nb; b++) {
+    size_t r1 = (b + 1) * B < n ? (b + 1) * B : n, sum = 0;
+    for (size_t I = b * B; I < r1; I++) {
+      size_t nq, s = 0;
+      const int *Q;
+      mfs_plan_particle_points(pl, I, &nq, &Q);
+      for (size_t t = 0; t < nq; t++)
+        s += tptr[Q[t] + 1] - tptr[Q[t]];
+      s = s < n ? s : n;
+      cp = s > cp ? s : cp;
+      if (!fixed || !fixed[I])
+        sum += s * nd2;
+    }
+    tot += sum;
+    bsum[b] = sum;
+  }
+  *total = tot;
+  *cap = cp < n ? cp : (n ? n : 1);
+}
+
+/* Entries in row order: the matrix's, or a thread's block of them. */
+typedef struct {
+  int *idx;
+  double *kv, *mv; /* K's and M's values (each if asked for) */
+  size_t len;
+} fuse_buf;
+
+typedef struct {
+  fuse_buf out;   /* the matrices' entries */
+  /* more than one thread: block k's entries go to out at boff[k] (the sum of
+   * the bounds of the blocks before it), blen[k] of them, through its
+   * thread's view tb[t] (block tblk[t]); compacted after the sweep */
+  fuse_buf *tb;
+  size_t *tblk, *boff, *blen, B;
+  int *srt;       /* per thread: a row's free columns, sorted (cap each) */
+  uint64_t *bits; /* per thread: PATTERN_WORDS */
+  size_t cap;
+  size_t *rlen;   /* per particle: the free columns of its row */
+  double *acc;    /* scalar_2d, per thread: PATTERN_WORDS * 64 columns, zero */
+  int scalar_2d;  /* the forms: the stiffness of a 2D scalar model alone (fuse_scalar_2d) */
+  const mfs_forms *f;
+  const mfs_plan *pl;
+  const int *prow;
+  int ndof, pu, nt;
+  double density, node_vol;
+  const double *vol;
+  double *m;
+} fuse_ctx;
+
+static int cmp_int(const void *a, const void *b)
+{
+  int x = *(const int *)a, y = *(const int *)b;
+  return (x > y) - (x < y);
+}
+
+/* The free columns of row r of particle I (r->col, in order of first
+ * appearance) sorted into srt; returns their count.  As pattern_row: the
+ * columns lie between the smallest first and the largest last entry of the
+ * (sorted) lists of I's points; a bitmap of that window where it is at most
+ * PATTERN_WORDS wide, else a sort.  nd == 1 (and the one sweep's row, mark
+ * its positions): the entries are written at once, idx into ix and the
+ * values into kv and mv (each if not NULL), and srt is not used. */
+static size_t row_sorted_free(const mfs_plan *pl, size_t I, const mfs_row *r, const int *prow,
+                              uint64_t *bits, int *srt, size_t nd, int *ix, double *kv,
+                              double *mv)
+{
+  const size_t len = r->len;
+  const int *col = r->col;
+  size_t nq, k = 0;
+  const int *Q;
+  mfs_plan_particle_points(pl, I, &nq, &Q);
+  int lo = INT32_MAX, hi = -1;
+  for (size_t t = 0; t < nq; t++) {
+    size_t e0 = r->tptr[Q[t]], e1 = r->tptr[Q[t] + 1];
+    if (e1 > e0) {
+      lo = r->tidx[e0] < lo ? r->tidx[e0] : lo;
+      hi = r->tidx[e1 - 1] > hi ? r->tidx[e1 - 1] : hi;
+    }
+  }
+  if (hi < lo)
+    return 0;
+  size_t nw = ((size_t)(hi - lo) >> 6) + 1;
+  if (nw <= PATTERN_WORDS) {
+    memset(bits, 0, nw * sizeof *bits);
+    for (size_t s = 0; s < len; s++) {
+      unsigned d = (unsigned)(col[s] - lo);
+      bits[d >> 6] |= (uint64_t)1 << (d & 63);
+    }
+    if (nd == 1) {
+      const int *mark = r->mark;
+      for (size_t w = 0; w < nw; w++)
+        for (uint64_t b = bits[w]; b; b &= b - 1) {
+          int J = lo + (int)(w << 6) + __builtin_ctzll(b);
+          if (prow[J] >= 0) {
+            ix[k] = prow[J];
+            if (kv)
+              kv[k] = r->K[mark[J]];
+            if (mv)
+              mv[k] = r->M ? r->M[mark[J]] : 0.0;
+            k++;
+          }
+        }
+      return k;
+    }
+    for (size_t w = 0; w < nw; w++)
+      for (uint64_t b = bits[w]; b; b &= b - 1) {
+        int J = lo + (int)(w << 6) + __builtin_ctzll(b);
+        if (prow[J] >= 0)
+          srt[k++] = J;
+      }
+    return k;
+  }
+  for (size_t s = 0; s < len; s++)
+    if (prow[col[s]] >= 0)
+      srt[k++] = col[s];
+  qsort(srt, k, sizeof *srt, cmp_int);
+  if (nd == 1)
+    for (size_t s = 0; s < k; s++) {
+      int J = srt[s];
+      ix[s] = prow[J];
+      if (kv)
+        kv[s] = r->K[r->mark[J]];
+      if (mv)
+        mv[s] = r->M ? r->M[r->mark[J]] : 0.0;
+    }
+  return k;
+}
+
+/* A row of the sweep, its free columns sorted, appended to its thread's
+ * entries (to the matrix's with one thread); the lumped mass as fill_row. */
+static mfs_status fuse_row(void *vc, const mfs_row *r, size_t I, int thread)
+{
+  fuse_ctx *c = vc;
+  fuse_buf *b = c->nt > 1 ? c->tb + thread : &c->out;
+  int *srt = c->srt + (size_t)thread * c->cap;
+  const size_t nd = (size_t)c->ndof, nd2 = nd * nd, rp = (size_t)c->prow[I];
+  int *ix = b->idx + b->len;
+  double *kv = b->kv ? b->kv + b->len : NULL, *mv = b->mv ? b->mv + b->len : NULL;
+  const size_t len = row_sorted_free(c->pl, I, r, c->prow, c->bits + (size_t)thread * PATTERN_WORDS,
+                                     srt, nd, ix, kv, mv);
+  c->rlen[I] = len;
+  if (nd > 1)
+    for (size_t a = 0, e = 0; a < nd; a++)
+      for (size_t s = 0; s < len; s++) {
+        size_t q = (size_t)r->mark[srt[s]];
+        for (size_t bb = 0; bb < nd; bb++, e++) {
+          ix[e] = (int)((size_t)c->prow[srt[s]] * nd + bb);
+          if (kv)
+            kv[e] = r->K[q * nd2 + a * nd + bb];
+          if (mv)
+            mv[e] = a == bb && r->M ? r->M[q] : 0.0;
+        }
+      }
+  b->len += len * nd2;
+  if (c->m) /* sph: the particle masses rho V_I (eq. 51) */
+    for (size_t a = 0; a < nd; a++)
+      c->m[rp * nd + a] = c->pu ? r->lump : c->density * (c->vol ? c->vol[I] : c->node_vol);
+  return MFS_OK;
+}
+
+/* Row I of the stiffness of a 2D scalar model alone (the forms of
+ * row_assemble_scalar_2d, its arithmetic: the same values, bit for bit)
+ * accumulated straight into a dense window of the columns, lo .. hi (the
+ * smallest first and the largest last entry of the sorted lists of I's
+ * points), with a bitmap of the columns met: they come out sorted, without
+ * a marker or a sort, and the window is cleared as it is read.  A window
+ * wider than PATTERN_WORDS: the general row and fuse_row. */
+static mfs_status fuse_scalar_2d(fuse_ctx *c, mfs_row *r, size_t I, int thread)
+{
+  size_t nq;
+  const int *Qs;
+  mfs_plan_particle_points(c->pl, I, &nq, &Qs);
+  int lo = INT32_MAX, hi = -1;
+  for (size_t t = 0; t < nq; t++) {
+    size_t e0 = r->tptr[Qs[t]], e1 = r->tptr[Qs[t] + 1];
+    if (e1 > e0) {
+      lo = r->tidx[e0] < lo ? r->tidx[e0] : lo;
+      hi = r->tidx[e1 - 1] > hi ? r->tidx[e1 - 1] : hi;
+    }
+  }
+  size_t nw = hi < lo ? 0 : ((size_t)(hi - lo) >> 6) + 1;
+  if (nw > PATTERN_WORDS) {
+    mfs_status st = mfs_row_assemble(r, c->pl, c->f, I);
+    return st == MFS_OK ? fuse_row(c, r, I, thread) : st;
+  }
+  fuse_buf *b = c->nt > 1 ? c->tb + thread : &c->out;
+  uint64_t *bits = c->bits + (size_t)thread * PATTERN_WORDS;
+  double *acc = c->acc + (size_t)thread * PATTERN_WORDS * 64;
+  const double rho = c->f->lumped_density, c0 = c->f->c[0];
+  double lump = 0.0;
+  memset(bits, 0, nw * sizeof *bits);
+  for (size_t t = 0; t < nq; t++) {
+    mfs_point pt;
+    row_point(r, (size_t)Qs[t], &pt);
+    const int nc = pt.ncomp;
+    const double *tab = pt.phi;
+    size_t iI = 0;
+    while (iI < pt.nn && pt.idx[iI] != (int)I) /* the lists hold I: its point sees it */
+      iI++;
+    if (iI == pt.nn)
+      iI = 0; /* as the general loop (never: I is in the list of each of its points) */
+    if (rho != 0.0)
+      lump += rho * pt.w * tab[iI * (size_t)nc];
+    const double *fi = tab + iI * (size_t)nc, wc = pt.w * c0, i1 = fi[1], i2 = fi[2];
+    for (size_t e = 0; e < pt.nn; e++) {
+      unsigned d = (unsigned)(pt.idx[e] - lo);
+      const double *fj = tab + e * (size_t)nc;
+      double g = 0.0;
+      g += i1 * fj[1];
+      g += i2 * fj[2];
+      acc[d] += wc * g;
+      bits[d >> 6] |= (uint64_t)1 << (d & 63);
+    }
+  }
+  int *ix = b->idx + b->len;
+  double *kv = b->kv + b->len;
+  size_t k = 0;
+  for (size_t w = 0; w < nw; w++)
+    for (uint64_t m = bits[w]; m; m &= m - 1) {
+      unsigned d = (unsigned)(w << 6) + (unsigned)__builtin_ctzll(m);
+      int J = lo + (int)d;
+      if (c->prow[J] >= 0) {
+        ix[k] = c->prow[J];
+        kv[k] = acc[d];
+        k++;
+      }
+      acc[d] = 0.0;
+    }
+  c->rlen[I] = k;
+  b->len += k;
+  if (c->m) /* sph: the particle masses rho V_I (eq. 51) */
+    c->m[c->prow[I]] = c->pu ? lump : c->density * (c->vol ? c->vol[I] : c->node_vol);
+  return MFS_OK;
+}
+
+/* The one sweep's row: the 2D scalar stiffness by its window, any other
+ * forms by the general row (mfs_row_assemble) and fuse_row. */
+static mfs_status fuse_any(void *vc, mfs_row *r, size_t I, int thread)
+{
+  fuse_ctx *c = vc;
+  fuse_buf *b = c->nt > 1 ? c->tb + thread : &c->out;
+  size_t k = I / c->B;
+  if (c->nt > 1 && c->tblk[thread] != k) { /* the first row of a block: its view */
+    c->tblk[thread] = k;
+    *b = (fuse_buf){.idx = c->out.idx + c->boff[k],
+                    .kv = c->out.kv ? c->out.kv + c->boff[k] : NULL,
+                    .mv = c->out.mv ? c->out.mv + c->boff[k] : NULL};
+  }
+  mfs_status st;
+  if (c->scalar_2d) {
+    st = fuse_scalar_2d(c, r, I, thread);
+  } else {
+    st = mfs_row_assemble(r, c->pl, c->f, I);
+    if (st == MFS_OK)
+      st = fuse_row(c, r, I, thread);
+  }
+  if (c->nt > 1)
+    c->blen[k] = b->len;
+  return st;
+}
+
+static mfs_status fuse_buf_alloc(fuse_buf *b, size_t len, int k, int m)
+{
+  len = len ? len : 1;
+  b->idx = mfs_malloc(len * sizeof *b->idx);
+  b->kv = k ? mfs_malloc(len * sizeof *b->kv) : NULL;
+  b->mv = m ? mfs_malloc(len * sizeof *b->mv) : NULL;
+  return b->idx && (!k || b->kv) && (!m || b->mv) ? MFS_OK : MFS_ENOMEM;
+}
+
+static void fuse_buf_free(fuse_buf *b)
+{
+  mfs_free(b->idx);
+  mfs_free(b->kv);
+  mfs_free(b->mv);
+}
+
+/* A block shrunk to len entries (kept as it is if the shrinking fails). */
+static void *shrink(void *p, size_t bytes)
+{
+  void *t = p ? mfs_realloc(p, bytes ? bytes : 1) : NULL;
+  return t ? t : p;
+}
+
+mfs_status mfs_assemble(const mfs_plan *pl, const mfs_material *mat, const unsigned char *fixed,
+                        mfs_csr **K, mfs_csr **M, double *m, size_t *bad)
+{
+  if (K)
+    *K = NULL;
+  if (M)
+    *M = NULL;
+  if (!pl || !mat || (!K && !M))
+    return MFS_EINVAL;
+  const mfs_particles *p = mfs_plan_particles(pl);
+  if (mat->physics == MFS_PHYS_PLANE_STRAIN && p->dim != 2)
+    return MFS_EINVAL;
+  if (mfs_plan_transpose(pl) != MFS_OK)
+    return MFS_ENOMEM;
+  const size_t n = p->n;
+  const int nd = mfs_physics_ndof(mat->physics), nt = mfs_threads();
+  const size_t nd2 = (size_t)nd * (size_t)nd;
+  const mfs_disc *d = mfs_plan_disc(pl); /* the lumped mass: as mfs_assemble_fill */
+  const int pu = d->shape->partition_of_unity && !d->node_volume_mass;
+  mfs_forms f = mfs_forms_stiffness(mat);
+  f.stiffness = K != NULL;
+  if (M)
+    f.density = mat->density;
+  if (m && pu)
+    f.lumped_density = mat->density;
+  /* the blocks of mfs_row_sweep's, for the forms' order (1) */
+  const size_t B = sweep_block(n, mfs_plan_order(pl) >= 1, nt);
+  const size_t nb = (n + B - 1) / B;
+  size_t total, cap, *bsum = mfs_malloc((nb + 1) * sizeof *bsum);
+  if (!bsum)
+    return MFS_ENOMEM;
+  row_bounds(pl, fixed, B, nd2, &total, bsum, &cap);
+  mfs_status st = MFS_ENOMEM;
+  mfs_csr *A = NULL, *C = NULL;
+  int *prow = mfs_malloc((n ? n : 1) * sizeof *prow);
+  fuse_ctx c = {.cap = cap, .ndof = nd, .pu = pu, .nt = nt, .density = mat->density,
+                .node_vol = d->node_volume_mass ? mfs_particles_node_volume(p) : 0.0,
+                .vol = d->node_volume_mass ? NULL : p->vol, .m = m, .pl = pl, .prow = prow};
+  c.rlen = mfs_calloc(n ? n : 1, sizeof *c.rlen);
+  c.srt = mfs_malloc((size_t)nt * cap * sizeof *c.srt);
+  c.bits = mfs_malloc((size_t)nt * PATTERN_WORDS * sizeof *c.bits);
+  c.f = &f;
+  c.scalar_2d = p->dim == 2 && nd == 1 && K && !M;
+  if (c.scalar_2d)
+    c.acc = mfs_calloc((size_t)nt * PATTERN_WORDS * 64, sizeof *c.acc);
+  if (!prow || !c.rlen || !c.srt || !c.bits || (c.scalar_2d && !c.acc))
+    goto done;
+  /* the matrix's entries at their bound: the pages past the rows' are never
+   * touched, and the block is shrunk at the end */
+  if (fuse_buf_alloc(&c.out, total, K != NULL, M != NULL) != MFS_OK)
+    goto done;
+  c.B = B;
+  if (nt > 1) {
+    c.tb = mfs_calloc((size_t)nt, sizeof *c.tb);
+    c.tblk = mfs_malloc((size_t)nt * sizeof *c.tblk);
+    c.boff = bsum; /* the bounds' prefix sums, in place */
+    c.blen = mfs_calloc(nb ? nb : 1, sizeof *c.blen);
+    if (!c.tb || !c.tblk || !c.blen)
+      goto done;
+    for (int t = 0; t < nt; t++)
+      c.tblk[t] = SIZE_MAX;
+    for (size_t k = 0, o = 0; k < nb; k++) {
+      size_t w = bsum[k];
+      bsum[k] = o;
+      o += w;
+    }
+  } /* one thread: the blocks in order, appended to out */
+  size_t nf = free_rows(n, fixed, prow, NULL);
+  sweep_job j = {.pl = pl, .f = &f, .skip = fixed, .fn = fuse_row, .ctx = &c, .cap = cap,
+                 .row = fuse_any};
+  if ((st = sweep_run(&j, bad)) != MFS_OK)
+    goto done;
+  if (nt > 1) /* the blocks moved down to their places, in order */
+    for (size_t k = 0; k < nb; k++) {
+      size_t o = c.boff[k], l = c.blen[k], at = c.out.len;
+      memmove(c.out.idx + at, c.out.idx + o, l * sizeof *c.out.idx);
+      if (c.out.kv)
+        memmove(c.out.kv + at, c.out.kv + o, l * sizeof *c.out.kv);
+      if (c.out.mv)
+        memmove(c.out.mv + at, c.out.mv + o, l * sizeof *c.out.mv);
+      c.out.len += l;
+    }
+  st = MFS_ENOMEM;
+  const size_t nr = nf * (size_t)nd;
+  if (!(A = mfs_calloc(1, sizeof *A)) || !(A->ptr = mfs_malloc((nr + 1) * sizeof *A->ptr)))
+    goto done;
+  A->nrow = A->ncol = nr;
+  A->ptr[0] = 0;
+  for (size_t I = 0, r = 0; I < n; I++)
+    if (prow[I] >= 0)
+      for (int a = 0; a < nd; a++, r++)
+        A->ptr[r + 1] = A->ptr[r] + c.rlen[I] * (size_t)nd;
+  const size_t nnz = c.out.len;
+  if (K && M) { /* M: a copy of the pattern */
+    if (!(C = mfs_calloc(1, sizeof *C)) || !(C->ptr = mfs_malloc((nr + 1) * sizeof *C->ptr)) ||
+        !(C->idx = mfs_malloc((nnz ? nnz : 1) * sizeof *C->idx)))
+      goto done;
+    C->nrow = C->ncol = nr;
+    memcpy(C->ptr, A->ptr, (nr + 1) * sizeof *C->ptr);
+    memcpy(C->idx, c.out.idx, nnz * sizeof *C->idx);
+  }
+  A->idx = shrink(c.out.idx, nnz * sizeof *A->idx);
+  A->val = shrink(K ? c.out.kv : c.out.mv, nnz * sizeof *A->val);
+  c.out.idx = NULL;
+  if (K) {
+    c.out.kv = NULL;
+    *K = A;
+    A = NULL;
+  } else {
+    c.out.mv = NULL;
+    *M = A;
+    A = NULL;
+  }
+  if (C) {
+    C->val = shrink(c.out.mv, nnz * sizeof *C->val);
+    c.out.mv = NULL;
+    *M = C;
+    C = NULL;
+  }
+  st = MFS_OK;
+done:
+  mfs_csr_free(A);
+  mfs_csr_free(C);
+  fuse_buf_free(&c.out);
+  mfs_free(c.tb);
+  mfs_free(c.tblk);
+  mfs_free(c.blen);
+  mfs_free(bsum);
+  mfs_free(c.srt);
+  mfs_free(c.bits);
+  mfs_free(c.rlen);
+  mfs_free(c.acc);
+  mfs_free(prow);
+  return st;
+}
+
+/* The matrix of the forms over every particle, in one sweep. */
 static mfs_status assemble_csr(const mfs_plan *pl, const mfs_material *mat, int want_mass,
                                mfs_csr **out)
 {
-  *out = NULL;
-  mfs_csr *A = NULL;
-  mfs_status st = mfs_assemble_pattern(pl, mfs_physics_ndof(mat->physics), NULL, &A);
-  if (st == MFS_OK)
-    st = want_mass ? mfs_assemble_fill(pl, mat, NULL, NULL, A, NULL, NULL)
-                   : mfs_assemble_fill(pl, mat, NULL, A, NULL, NULL, NULL);
-  if (st != MFS_OK) {
-    mfs_csr_free(A);
-    return st;
-  }
-  *out = A;
-  return MFS_OK;
+  return want_mass ? mfs_assemble(pl, mat, NULL, NULL, out, NULL, NULL)
+                   : mfs_assemble(pl, mat, NULL, out, NULL, NULL, NULL);
 }
 
 mfs_status mfs_assemble_stiffness(const mfs_plan *pl, const mfs_material *mat, mfs_csr **K)

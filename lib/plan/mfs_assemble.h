@@ -149,6 +149,20 @@ mfs_status mfs_assemble_fill(const mfs_plan *pl, const mfs_material *mat,
                              const unsigned char *fixed, mfs_csr *K, mfs_csr *M, double *m,
                              size_t *bad);
 
+/* Symbolic and numeric assembly in one sweep (the one-shot path of finite
+ * models): *K (the stiffness of mat, if K is not NULL) and *M (the
+ * consistent mass, if M is not NULL) allocated (mfs_csr_free), with the
+ * pattern of mfs_assemble_pattern(pl, ndof of mat, fixed) and the values
+ * mfs_assemble_fill writes into it, bit for bit; m (if not NULL) the lumped
+ * mass as there.  Each row is accumulated once (mfs_row_sweep), its columns
+ * sorted and appended in row order: no separate pass for the pattern (with
+ * threads, each block of rows is written at an upper bound of its offset
+ * and the blocks are moved down in order at the end).
+ * MFS_OK, MFS_EINVAL (K and M both NULL, plane strain in 1D), MFS_ESINGULAR
+ * (at point *bad), MFS_ENOMEM. */
+mfs_status mfs_assemble(const mfs_plan *pl, const mfs_material *mat, const unsigned char *fixed,
+                        mfs_csr **K, mfs_csr **M, double *m, size_t *bad);
+
 /* The stiffness of a material over every particle, CSR of order n ndof
  * (plane strain dofs interleaved (u_x, u_y) per particle); *K is allocated
  * (mfs_csr_free). */

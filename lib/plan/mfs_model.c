@@ -89,17 +89,6 @@ double *mfs_model_coords(const mfs_model *m)
   return x;
 }
 
-/* A second matrix with A's pattern (values not set). */
-static mfs_csr *same_pattern(const mfs_csr *A)
-{
-  mfs_csr *B = mfs_csr_alloc(A->nrow, A->ncol, A->ptr[A->nrow]);
-  if (!B)
-    return NULL;
-  memcpy(B->ptr, A->ptr, (A->nrow + 1) * sizeof *B->ptr);
-  memcpy(B->idx, A->idx, A->ptr[A->nrow] * sizeof *B->idx);
-  return B;
-}
-
 mfs_model *mfs_model_alloc(const mfs_model_spec *spec, mfs_status *status, size_t *bad)
 {
   mfs_status st = mfs_model_spec_check(spec, NULL);
@@ -147,21 +136,15 @@ mfs_model *mfs_model_alloc(const mfs_model_spec *spec, mfs_status *status, size_
   if (m->n < 1)
     goto done;
 
-  /* symbolic: the pattern of the free dofs, rows sorted; numeric: K (and M,
-   * or the lumped m) filled in one sweep over the rows, which evaluates the
-   * shape functions block by block: no table is held (mfs_assemble.h) */
+  /* symbolic and numeric in one sweep over the rows (mfs_assemble): the
+   * pattern of the free dofs, rows sorted, and K (and M, or the lumped m);
+   * the sweep evaluates the shape functions block by block: no table is
+   * held (mfs_assemble.h) */
   const unsigned char *fx = spec->fixed != MFS_FIX_NONE ? m->fixed : NULL;
-  st = mfs_assemble_pattern(m->pl, m->ndof, fx, &m->K);
-  if (st != MFS_OK)
-    goto done;
   st = MFS_ENOMEM;
-  if (d->consistent_mass) {
-    if (!(m->M = same_pattern(m->K)))
-      goto done;
-  } else if (!(m->m = mfs_malloc(m->n * sizeof *m->m))) {
+  if (!d->consistent_mass && !(m->m = mfs_malloc(m->n * sizeof *m->m)))
     goto done;
-  }
-  st = mfs_assemble_fill(m->pl, &m->mat, fx, m->K, m->M, m->m, bad);
+  st = mfs_assemble(m->pl, &m->mat, fx, &m->K, d->consistent_mass ? &m->M : NULL, m->m, bad);
 done:
   if (st != MFS_OK) {
     mfs_model_free(m);

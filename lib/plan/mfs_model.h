@@ -15,10 +15,9 @@
  * rows and columns of the free degrees of freedom.
  *
  * The model is built with the core machinery (mfs_disc_geometry,
- * mfs_plan_alloc, then mfs_assemble_pattern and mfs_assemble_fill: the
- * pattern of the free dofs once, the values filled into it by one sweep over
- * the rows that evaluates the shape functions block by block, so that no
- * shape table is held), and keeps the plan (its neighbour lists, without a
+ * mfs_plan_alloc, then mfs_assemble: the pattern of the free dofs and the
+ * values together, in one sweep over the rows that evaluates the shape
+ * functions block by block, so that no shape table is held), and keeps the plan (its neighbour lists, without a
  * table) for the element bound (mfs_bound.h) and the solvers.  The
  * discretization is an mfs_disc with a finite source (mfs_disc.h). */
 #ifndef MFS_MODEL_H

@@ -14,8 +14,8 @@ struct mfs_plan {
   const mfs_quad *q;      /* borrowed */
   double a;               /* support radius D p->dx */
   mfs_nlist *nl;          /* quadrature point -> particles within a */
-  size_t *tptr;           /* p->n + 1: particle -> points that see it (transpose) */
-  int *tq;
+  size_t *tptr;           /* p->n + 1: particle -> points that see it (transpose), */
+  int *tq;                /* built by the first mfs_plan_transpose; tq set last */
   size_t maxrow;          /* longest list */
   int order, ncomp;       /* of the table; 0 before mfs_plan_tabulate */
   double *tab;            /* nl->ptr[nq] * ncomp */
@@ -57,29 +57,12 @@ mfs_plan *mfs_plan_alloc(const mfs_disc *d, const mfs_particles *p, const mfs_qu
   pl->nl = mfs_nlist_build(g, q->n, q->x, pl->a, &st);
   if (!pl->nl)
     goto done;
-  st = MFS_ENOMEM;
-  size_t n = p->n, nq = q->n, nnz = pl->nl->ptr[nq];
+  size_t nq = q->n;
   pl->maxrow = 1;
   for (size_t Q = 0; Q < nq; Q++) {
     size_t len = pl->nl->ptr[Q + 1] - pl->nl->ptr[Q];
     pl->maxrow = len > pl->maxrow ? len : pl->maxrow;
   }
-  pl->tptr = mfs_calloc(n + 1, sizeof *pl->tptr);
-  pl->tq = mfs_malloc((nnz ? nnz : 1) * sizeof *pl->tq);
-  size_t *next = mfs_malloc((n ? n : 1) * sizeof *next);
-  if (!pl->tptr || !pl->tq || !next) {
-    mfs_free(next);
-    goto done;
-  }
-  for (size_t e = 0; e < nnz; e++)
-    pl->tptr[pl->nl->idx[e] + 1]++;
-  for (size_t i = 0; i < n; i++)
-    pl->tptr[i + 1] += pl->tptr[i];
-  memcpy(next, pl->tptr, n * sizeof *next);
-  for (size_t Q = 0; Q < nq; Q++)
-    for (size_t e = pl->nl->ptr[Q]; e < pl->nl->ptr[Q + 1]; e++)
-      pl->tq[next[pl->nl->idx[e]]++] = (int)Q;
-  mfs_free(next);
   st = MFS_OK;
 done:
   mfs_grid_free(g);
@@ -207,6 +190,59 @@ void mfs_plan_table(const mfs_plan *pl, const size_t **ptr, const int **idx, con
   *ptr = pl->nl->ptr;
   *idx = pl->nl->idx;
   *tab = pl->tab;
+}
+
+/* The transpose by counting (no sort): the points of each particle in
+ * increasing order, as the lists are walked in order. */
+static mfs_status build_transpose(const mfs_nlist *nl, size_t n, size_t **tptr_out, int **tq_out)
+{
+  const size_t nq = nl->nq, nnz = nl->ptr[nq];
+  size_t *tptr = mfs_calloc(n + 1, sizeof *tptr);
+  int *tq = mfs_malloc((nnz ? nnz : 1) * sizeof *tq);
+  size_t *next = mfs_malloc((n ? n : 1) * sizeof *next);
+  if (!tptr || !tq || !next) {
+    mfs_free(tptr);
+    mfs_free(tq);
+    mfs_free(next);
+    return MFS_ENOMEM;
+  }
+  for (size_t e = 0; e < nnz; e++)
+    tptr[nl->idx[e] + 1]++;
+  for (size_t i = 0; i < n; i++)
+    tptr[i + 1] += tptr[i];
+  memcpy(next, tptr, n * sizeof *next);
+  for (size_t Q = 0; Q < nq; Q++)
+    for (size_t e = nl->ptr[Q]; e < nl->ptr[Q + 1]; e++)
+      tq[next[nl->idx[e]]++] = (int)Q;
+  mfs_free(next);
+  *tptr_out = tptr;
+  *tq_out = tq;
+  return MFS_OK;
+}
+
+mfs_status mfs_plan_transpose(const mfs_plan *cpl)
+{
+  if (!cpl)
+    return MFS_EINVAL;
+  /* a cache of the (logically const) plan: built once, under a lock, and
+   * published by its last pointer */
+  mfs_plan *pl = (mfs_plan *)cpl;
+  if (__atomic_load_n(&pl->tq, __ATOMIC_ACQUIRE))
+    return MFS_OK;
+  mfs_status st = MFS_OK;
+#pragma omp critical(mfs_plan_transpose)
+  {
+    if (!__atomic_load_n(&pl->tq, __ATOMIC_ACQUIRE)) {
+      size_t *tptr = NULL;
+      int *tq = NULL;
+      st = build_transpose(pl->nl, pl->p->n, &tptr, &tq);
+      if (st == MFS_OK) {
+        pl->tptr = tptr;
+        __atomic_store_n(&pl->tq, tq, __ATOMIC_RELEASE);
+      }
+    }
+  }
+  return st;
 }
 
 void mfs_plan_particle_points(const mfs_plan *pl, size_t I, size_t *n, const int **Q)

@@ -3,8 +3,9 @@
  * splits symbolic from numeric factorization:
  *
  *   mfs_plan_alloc      symbolic: the neighbour lists of the quadrature points
- *                       (cell lists, O(N); radius a = D dx) and their transpose
- *                       (the points that see each particle)
+ *                       (cell lists, O(N); radius a = D dx); their transpose
+ *                       (the points that see each particle) is built by the
+ *                       first consumer that reads it (mfs_plan_transpose)
  *   mfs_plan_tabulate   numeric: the shape functions and derivatives at every
  *                       point (order 1: values and gradients; 2: also second
  *                       derivatives), by the point evaluator (mfs_eval.h)
@@ -79,8 +80,17 @@ void mfs_plan_point(const mfs_plan *pl, size_t Q, mfs_point *pt);
  * tab[e * ncomp ..] for e in that range (tab NULL before tabulation). */
 void mfs_plan_table(const mfs_plan *pl, const size_t **ptr, const int **idx, const double **tab);
 
+/* The transpose of the lists, particle -> the quadrature points that see
+ * it: built on the first call (by counting, O(entries); a cache of the
+ * const plan, so that consumers without rows, the time steps of the tables,
+ * the unit cells' sums, do not pay for it), kept until mfs_plan_free.  Safe
+ * to call from several threads (a lock around the first build; the
+ * library's row assemblers call it before their parallel loops).  MFS_OK,
+ * MFS_EINVAL (pl NULL), MFS_ENOMEM. */
+mfs_status mfs_plan_transpose(const mfs_plan *pl);
+
 /* The quadrature points that see particle I, increasing: *n of them in
- * (*Q)[0..n). */
+ * (*Q)[0..n).  The transpose must have been built (mfs_plan_transpose). */
 void mfs_plan_particle_points(const mfs_plan *pl, size_t particle, size_t *n, const int **Q);
 
 const mfs_particles *mfs_plan_particles(const mfs_plan *pl);

@@ -299,6 +299,16 @@ static int power_lambda(mfs_solver *s, double *lambda)
   return MFS_OK;
 }
 
+/* The material of the linearized stiffness at u = 0, K(Cbar): scalar, with
+ * modulus Cbar = E + S0 (eq. 81) and the rod's density (the element bound,
+ * the Gershgorin bound and the certified step use it). */
+static mfs_material rod_cbar_material(const mfs_disc *d)
+{
+  return (mfs_material){.physics = MFS_PHYS_SCALAR,
+                        .modulus = d->material.modulus + d->material.initial_stress,
+                        .density = d->material.density};
+}
+
 /* The linearized stiffness at u = 0 applies to the Gershgorin and certified
  * rules when it is K(Cbar), Cbar = E + S0 (eq. 81): the Lagrangian kernel,
  * or the Eulerian one without initial stress (sigma = 0 at u = 0, so the
@@ -310,7 +320,7 @@ static const char *stiffness_rule_applies(const mfs_solver *s)
   if (d->frame == MFS_FRAME_EULERIAN && d->material.initial_stress != 0.0)
     return "the Eulerian rod with an initial stress: its linearization has kernel-motion terms "
            "that neither bound covers";
-  if (!(d->material.modulus + d->material.initial_stress > 0.0))
+  if (!(rod_cbar_material(d).modulus > 0.0))
     return "Cbar = E + S0 <= 0: the linearized stiffness is not positive";
   for (size_t I = 0; I < s->n; I++)
     if (!(s->m[I] > 0.0))
@@ -319,34 +329,28 @@ static const char *stiffness_rule_applies(const mfs_solver *s)
 }
 
 /* The Gershgorin bound of M^-1 K(Cbar) with the rod's masses, from the plan
- * (one pass over the rows, fixed particles removed). */
+ * (one pass over the rows, fixed particles removed); *lambda is set only on
+ * success. */
 static mfs_status rod_gershgorin(mfs_solver *s, double *lambda)
 {
-  const mfs_disc *d = &s->spec.disc;
-  mfs_material mat = {.physics = MFS_PHYS_SCALAR,
-                      .modulus = d->material.modulus + d->material.initial_stress,
-                      .density = d->material.density};
+  const mfs_material mat = rod_cbar_material(&s->spec.disc);
   mfs_forms f = mfs_forms_stiffness(&mat);
   mfs_gershgorin_op op = {.forms = &f, .ndof = 1, .mass = s->m, .density = mat.density};
   mfs_gershgorin_result g;
   mfs_status st = mfs_gershgorin_op_plan(s->w->pl, &op, s->w->fixed, &g, NULL);
-  *lambda = g.lambda;
+  if (st == MFS_OK)
+    *lambda = g.lambda;
   return st;
 }
 
 /* The certified step of the pencil (K(Cbar), m) on the free particles. */
 static mfs_status rod_certify(mfs_solver *s, mfs_dt_info *info)
 {
-  const mfs_disc *d = &s->spec.disc;
-  mfs_material mat = {.physics = MFS_PHYS_SCALAR,
-                      .modulus = d->material.modulus + d->material.initial_stress,
-                      .density = d->material.density};
+  const mfs_material mat = rod_cbar_material(&s->spec.disc);
   mfs_csr *K = NULL;
   double *m = NULL;
-  mfs_status st = mfs_assemble_pattern(s->w->pl, 1, s->w->fixed, &K);
+  mfs_status st = mfs_assemble(s->w->pl, &mat, s->w->fixed, &K, NULL, NULL, NULL);
   if (st != MFS_OK)
-    goto done;
-  if ((st = mfs_assemble_fill(s->w->pl, &mat, s->w->fixed, K, NULL, NULL, NULL)) != MFS_OK)
     goto done;
   st = MFS_ENOMEM;
   if (!(m = mfs_malloc((K->nrow ? K->nrow : 1) * sizeof *m)))
@@ -516,9 +520,7 @@ mfs_solver *mfs_solver_alloc(const mfs_solver_spec *spec, mfs_status *status, si
       goto fail;
   }
   /* the element bound with Cbar = E + S0 (eqs 81, 132), for the power rule */
-  mfs_material mat = {.physics = MFS_PHYS_SCALAR,
-                      .modulus = d->material.modulus + d->material.initial_stress,
-                      .density = d->material.density};
+  const mfs_material mat = rod_cbar_material(d);
   mfs_bound_result br;
   mfs_status bst = mat.modulus > 0.0 ? mfs_bound_plan(w->pl, &mat, w->fixed, &br) : MFS_EINVAL;
   if ((st = mfs_dt_take_bound(bst, &br, &s->lambda_bound, &s->negative_phi)) != MFS_OK)
