@@ -1348,6 +1348,40 @@ static void *shrink(void *p, size_t bytes)
   return t ? t : p;
 }
 
+/* The exact entries of each block of B rows (the free columns of its rows,
+ * pattern_row's count, times nd2) into bsum[0..nb), their sum into *total:
+ * with more than one thread the blocks are written at these offsets. */
+static mfs_status block_counts(const mfs_plan *pl, const int *prow, size_t B, size_t nd2, int nt,
+                               size_t *bsum, size_t *total)
+{
+  const size_t n = mfs_plan_particles(pl)->n, nb = (n + B - 1) / B;
+  int *mark = mfs_malloc((size_t)nt * (n ? n : 1) * sizeof *mark);
+  uint64_t *bits = mfs_malloc((size_t)nt * 4 * PATTERN_WORDS * sizeof *bits);
+  if (!mark || !bits) {
+    mfs_free(mark);
+    mfs_free(bits);
+    return MFS_ENOMEM;
+  }
+  for (size_t i = 0; i < (size_t)nt * n; i++)
+    mark[i] = -1;
+  size_t tot = 0;
+#pragma omp parallel for reduction(+ : tot) schedule(dynamic, 1) num_threads(nt)
+  for (size_t b = 0; b < nb; b++) {
+    const int t = mfs_thread_id();
+    size_t r1 = (b + 1) * B < n ? (b + 1) * B : n, sum = 0;
+    for (size_t I = b * B; I < r1; I++)
+      if (prow[I] >= 0)
+        sum += nd2 * pattern_row(pl, I, prow, mark + (size_t)t * n, (int)I,
+                                 bits + (size_t)t * 4 * PATTERN_WORDS, NULL);
+    bsum[b] = sum;
+    tot += sum;
+  }
+  *total = tot;
+  mfs_free(mark);
+  mfs_free(bits);
+  return MFS_OK;
+}
+
 mfs_status mfs_assemble(const mfs_plan *pl, const mfs_material *mat, const unsigned char *fixed,
                         mfs_csr **K, mfs_csr **M, double *m, size_t *bad)
 {
@@ -1395,11 +1429,11 @@ mfs_status mfs_assemble(const mfs_plan *pl, const mfs_material *mat, const unsig
     c.acc = mfs_calloc((size_t)nt * PATTERN_WORDS * 64, sizeof *c.acc);
   if (!prow || !c.rlen || !c.srt || !c.bits || (c.scalar_2d && !c.acc))
     goto done;
-  /* the matrix's entries at their bound: the pages past the rows' are never
-   * touched, and the block is shrunk at the end */
-  if (fuse_buf_alloc(&c.out, total, K != NULL, M != NULL) != MFS_OK)
-    goto done;
   c.B = B;
+  size_t nf = free_rows(n, fixed, prow, NULL);
+  if (nt > 1 && (st = block_counts(pl, prow, B, nd2, nt, bsum, &total)) != MFS_OK)
+    goto done;
+  st = MFS_ENOMEM;
   if (nt > 1) {
     c.tb = mfs_calloc((size_t)nt, sizeof *c.tb);
     c.tblk = mfs_malloc((size_t)nt * sizeof *c.tblk);
@@ -1415,7 +1449,12 @@ mfs_status mfs_assemble(const mfs_plan *pl, const mfs_material *mat, const unsig
       o += w;
     }
   } /* one thread: the blocks in order, appended to out */
-  size_t nf = free_rows(n, fixed, prow, NULL);
+  /* the matrix's entries: one thread at their bound (the pages past the rows'
+   * are never touched, and the block is shrunk at the end); more threads at
+   * the exact counts, each block at its place (a block moved down from a bound
+   * would keep both its pages) */
+  if (fuse_buf_alloc(&c.out, total, K != NULL, M != NULL) != MFS_OK)
+    goto done;
   sweep_job j = {.pl = pl, .f = &f, .skip = fixed, .fn = fuse_row, .ctx = &c, .cap = cap,
                  .row = fuse_any};
   if ((st = sweep_run(&j, bad)) != MFS_OK)
@@ -1423,6 +1462,10 @@ mfs_status mfs_assemble(const mfs_plan *pl, const mfs_material *mat, const unsig
   if (nt > 1) /* the blocks moved down to their places, in order */
     for (size_t k = 0; k < nb; k++) {
       size_t o = c.boff[k], l = c.blen[k], at = c.out.len;
+      c.out.len += l;
+      if (o == at) /* in place: the exact counts */
+        continue;
+      c.out.len -= l;
       memmove(c.out.idx + at, c.out.idx + o, l * sizeof *c.out.idx);
       if (c.out.kv)
         memmove(c.out.kv + at, c.out.kv + o, l * sizeof *c.out.kv);
