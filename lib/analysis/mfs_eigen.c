@@ -71,9 +71,7 @@ static void mass_apply(const mfs_pencil *P, const double *x, double *y)
       y[i] = P->m[i] * x[i];
 }
 
-/* A fixed pseudo-random vector in [-1, 1] (splitmix64), so that ARPACK runs
- * do not depend on ARPACK's internal seed and thus on earlier calls. */
-static void start_vector(size_t n, double *x)
+void mfs_eig_start_vector(size_t n, double *x)
 {
   uint64_t s = 0x9e3779b97f4a7c15ULL;
   for (size_t i = 0; i < n; i++) {
@@ -635,7 +633,7 @@ mfs_status mfs_eig_max(const mfs_pencil *P, const mfs_eig_opts *opts, double *la
   w2 = mfs_malloc(n * sizeof *w2);
   if (!c.t || !start || !z || !w2)
     goto done;
-  start_vector(n, start);
+  mfs_eig_start_vector(n, start);
   arpack_job j = {.n = (int)n,
                   .nev = 1,
                   .ncv = default_ncv(opts, 1, n),
@@ -818,7 +816,7 @@ mfs_status mfs_eig_zero_modes(const mfs_pencil *P, double lambda_max, const mfs_
     st = MFS_ENOMEM;
     if (!d || !zv)
       goto done;
-    start_vector(n, start);
+    mfs_eig_start_vector(n, start);
     project(n, c.k, Z, MZ, start);
     arpack_job j = {.n = (int)n,
                     .mode = 3,

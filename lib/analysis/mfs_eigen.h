@@ -96,6 +96,12 @@ static inline mfs_status mfs_eig_info_fail(mfs_eig_info *info, mfs_status st, co
   return st;
 }
 
+/* The start vector of the iterative eigensolvers (mfs_eig_max, mfs_lanczos_max):
+ * x[0..n) fixed pseudo-random values in [-1, 1] (splitmix64), so that a run
+ * depends neither on ARPACK's internal seed nor on earlier calls, and the
+ * solvers start alike. */
+void mfs_eig_start_vector(size_t n, double *x);
+
 /* Largest eigenvalue of K v = lambda M v.  v (length n, or NULL) receives
  * its eigenvector, M-normalized.  Returns MFS_OK; MFS_EINVAL (n < 2, both or
  * neither mass given, a lumped mass entry <= 0 or non-finite); MFS_ENOCONV

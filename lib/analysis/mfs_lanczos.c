@@ -410,19 +410,6 @@ static int tri_top(lapack_int k, const double *d, const double *e, tri_ws *t, do
   return MFS_OK;
 }
 
-/* mfs_eig_max's start vector (splitmix64), so both solvers start alike. */
-static void start_vector(size_t n, double *x)
-{
-  uint64_t s = 0x9e3779b97f4a7c15ULL;
-  for (size_t i = 0; i < n; i++) {
-    uint64_t z = (s += 0x9e3779b97f4a7c15ULL);
-    z = (z ^ (z >> 30)) * 0xbf58476d1ce4e5b9ULL;
-    z = (z ^ (z >> 27)) * 0x94d049bb133111ebULL;
-    z ^= z >> 31;
-    x[i] = 2.0 * ((double)(z >> 11) * 0x1.0p-53) - 1.0;
-  }
-}
-
 static int pencil_ok(const mfs_pencil *P)
 {
   if (!P || !P->K || (P->M == NULL) == (P->m == NULL))
@@ -469,7 +456,7 @@ mfs_status mfs_lanczos_max(const mfs_pencil *P, const mfs_lanczos_opts *opts, do
     goto done;
   for (size_t i = 0; i < n; i++)
     s[i] = 1.0 / sqrt(P->m[i]);
-  start_vector(n, q);
+  mfs_eig_start_vector(n, q); /* as mfs_eig_max */
   double nq = 0.0;
   for (size_t i = 0; i < n; i++)
     nq += q[i] * q[i];

@@ -346,6 +346,21 @@ static inline void row_zero(mfs_row *r, size_t s)
       r->G[s * (size_t)r->gsz + k] = 0.0;
 }
 
+/* A point's table row of particle I (in its list: its point sees it), and
+ * rho w phi_I added to *lump where rho != 0 (the lumped mass's row sum). */
+static inline const double *point_self(const mfs_point *pt, size_t I, double rho, double *lump)
+{
+  size_t iI = 0;
+  while (iI < pt->nn && pt->idx[iI] != (int)I)
+    iI++;
+  if (iI == pt->nn)
+    iI = 0; /* as the general loop (never: I is in the list of each of its points) */
+  const double *fi = pt->phi + iI * (size_t)pt->ncomp;
+  if (rho != 0.0)
+    *lump += rho * pt->w * fi[0];
+  return fi;
+}
+
 /* mfs_row_assemble for the stiffness of a 2D scalar (anti-plane) model
  * alone, the rows of K and of its Gershgorin bound: one pass over each
  * point's list (the columns met and their terms together) instead of two,
@@ -360,14 +375,7 @@ static mfs_status row_assemble_scalar_2d(mfs_row *r, const mfs_forms *f, size_t 
     row_point(r, (size_t)Qs[t], &pt);
     const int nc = pt.ncomp;
     const double *tab = pt.phi;
-    size_t iI = 0;
-    while (iI < pt.nn && pt.idx[iI] != (int)I) /* the lists hold I: its point sees it */
-      iI++;
-    if (iI == pt.nn)
-      iI = 0; /* as the general loop (never: I is in the list of each of its points) */
-    if (rho != 0.0)
-      r->lump += rho * pt.w * tab[iI * (size_t)nc];
-    const double *fi = tab + iI * (size_t)nc, wc = pt.w * c0, i1 = fi[1], i2 = fi[2];
+    const double *fi = point_self(&pt, I, rho, &r->lump), wc = pt.w * c0, i1 = fi[1], i2 = fi[2];
     for (size_t e = 0; e < pt.nn; e++) {
       int J = pt.idx[e], s = r->mark[J];
       if (s < 0) {
@@ -1260,14 +1268,7 @@ static mfs_status fuse_scalar_2d(fuse_ctx *c, mfs_row *r, size_t I, int thread)
     row_point(r, (size_t)Qs[t], &pt);
     const int nc = pt.ncomp;
     const double *tab = pt.phi;
-    size_t iI = 0;
-    while (iI < pt.nn && pt.idx[iI] != (int)I) /* the lists hold I: its point sees it */
-      iI++;
-    if (iI == pt.nn)
-      iI = 0; /* as the general loop (never: I is in the list of each of its points) */
-    if (rho != 0.0)
-      lump += rho * pt.w * tab[iI * (size_t)nc];
-    const double *fi = tab + iI * (size_t)nc, wc = pt.w * c0, i1 = fi[1], i2 = fi[2];
+    const double *fi = point_self(&pt, I, rho, &lump), wc = pt.w * c0, i1 = fi[1], i2 = fi[2];
     for (size_t e = 0; e < pt.nn; e++) {
       unsigned d = (unsigned)(pt.idx[e] - lo);
       const double *fj = tab + e * (size_t)nc;
