@@ -807,6 +807,23 @@ static size_t free_rows(size_t n, const unsigned char *fixed, int *prow, int *pa
   return k;
 }
 
+/* The smallest and largest column of the (sorted) lists of the points
+ * Q[0..nq): lo > hi if they are all empty. */
+static inline void col_window(const size_t *tptr, const int *tidx, const int *Q, size_t nq,
+                              int *lo, int *hi)
+{
+  int l = INT32_MAX, h = -1;
+  for (size_t t = 0; t < nq; t++) {
+    size_t e0 = tptr[Q[t]], e1 = tptr[Q[t] + 1];
+    if (e1 > e0) {
+      l = tidx[e0] < l ? tidx[e0] : l;
+      h = tidx[e1 - 1] > h ? tidx[e1 - 1] : h;
+    }
+  }
+  *lo = l;
+  *hi = h;
+}
+
 enum { PATTERN_WORDS = 1024 }; /* the bitmaps of a row's window of columns: 65536 particles */
 
 /* The distinct free columns of row I, sorted, into cols (if not NULL);
@@ -825,14 +842,8 @@ static size_t pattern_row(const mfs_plan *pl, size_t I, const int *prow, int *ma
   size_t nq, len = 0;
   const int *Q;
   mfs_plan_particle_points(pl, I, &nq, &Q);
-  int lo = INT32_MAX, hi = -1;
-  for (size_t t = 0; t < nq; t++) {
-    size_t e0 = tptr[Q[t]], e1 = tptr[Q[t] + 1];
-    if (e1 > e0) {
-      lo = tidx[e0] < lo ? tidx[e0] : lo;
-      hi = tidx[e1 - 1] > hi ? tidx[e1 - 1] : hi;
-    }
-  }
+  int lo, hi;
+  col_window(tptr, tidx, Q, nq, &lo, &hi);
   if (hi < lo)
     return 0;
   size_t nw = ((size_t)(hi - lo) >> 6) + 1;
@@ -1143,14 +1154,8 @@ static size_t row_sorted_free(const mfs_plan *pl, size_t I, const mfs_row *r, co
   size_t nq, k = 0;
   const int *Q;
   mfs_plan_particle_points(pl, I, &nq, &Q);
-  int lo = INT32_MAX, hi = -1;
-  for (size_t t = 0; t < nq; t++) {
-    size_t e0 = r->tptr[Q[t]], e1 = r->tptr[Q[t] + 1];
-    if (e1 > e0) {
-      lo = r->tidx[e0] < lo ? r->tidx[e0] : lo;
-      hi = r->tidx[e1 - 1] > hi ? r->tidx[e1 - 1] : hi;
-    }
-  }
+  int lo, hi;
+  col_window(r->tptr, r->tidx, Q, nq, &lo, &hi);
   if (hi < lo)
     return 0;
   size_t nw = ((size_t)(hi - lo) >> 6) + 1;
@@ -1244,14 +1249,8 @@ static mfs_status fuse_scalar_2d(fuse_ctx *c, mfs_row *r, size_t I, int thread)
   size_t nq;
   const int *Qs;
   mfs_plan_particle_points(c->pl, I, &nq, &Qs);
-  int lo = INT32_MAX, hi = -1;
-  for (size_t t = 0; t < nq; t++) {
-    size_t e0 = r->tptr[Qs[t]], e1 = r->tptr[Qs[t] + 1];
-    if (e1 > e0) {
-      lo = r->tidx[e0] < lo ? r->tidx[e0] : lo;
-      hi = r->tidx[e1 - 1] > hi ? r->tidx[e1 - 1] : hi;
-    }
-  }
+  int lo, hi;
+  col_window(r->tptr, r->tidx, Qs, nq, &lo, &hi);
   size_t nw = hi < lo ? 0 : ((size_t)(hi - lo) >> 6) + 1;
   if (nw > PATTERN_WORDS) {
     mfs_status st = mfs_row_assemble(r, c->pl, c->f, I);
