@@ -973,6 +973,19 @@ done:
   return st;
 }
 
+/* The forms of an assembly: the stiffness, the consistent mass, the
+ * lumped mass's row sums (a partition of unity), each where asked for. */
+static mfs_forms assembly_forms(const mfs_material *mat, int stiffness, int mass, int lumped)
+{
+  mfs_forms f = mfs_forms_stiffness(mat);
+  f.stiffness = stiffness;
+  if (mass)
+    f.density = mat->density;
+  if (lumped)
+    f.lumped_density = mat->density;
+  return f;
+}
+
 typedef struct {
   mfs_csr *K, *M;
   double *m;
@@ -1037,12 +1050,7 @@ mfs_status mfs_assemble_fill(const mfs_plan *pl, const mfs_material *mat,
       (M && (M->nrow != nf * nd || M->ncol != nf * nd)) ||
       (K && M && K->ptr[K->nrow] != M->ptr[M->nrow]))
     goto done;
-  mfs_forms f = mfs_forms_stiffness(mat);
-  f.stiffness = K != NULL;
-  if (M)
-    f.density = mat->density;
-  if (m && pu)
-    f.lumped_density = mat->density;
+  mfs_forms f = assembly_forms(mat, K != NULL, M != NULL, m && pu);
   fill_ctx c = {.K = K, .M = M, .m = m, .prow = prow, .ndof = nd, .pu = pu,
                 .density = mat->density, .vol = vol, .node_vol = node_vol};
   if (!P) { /* the lumped mass alone: no pattern to fill */
@@ -1401,12 +1409,7 @@ mfs_status mfs_assemble(const mfs_plan *pl, const mfs_material *mat, const unsig
   const size_t nd2 = (size_t)nd * (size_t)nd;
   const mfs_disc *d = mfs_plan_disc(pl); /* the lumped mass: as mfs_assemble_fill */
   const int pu = d->shape->partition_of_unity && !d->node_volume_mass;
-  mfs_forms f = mfs_forms_stiffness(mat);
-  f.stiffness = K != NULL;
-  if (M)
-    f.density = mat->density;
-  if (m && pu)
-    f.lumped_density = mat->density;
+  mfs_forms f = assembly_forms(mat, K != NULL, M != NULL, m && pu);
   /* the blocks of mfs_row_sweep's, for the forms' order (1) */
   const size_t B = sweep_block(n, mfs_plan_order(pl) >= 1, nt);
   const size_t nb = (n + B - 1) / B;
