@@ -404,10 +404,21 @@ static int default_ncv(const mfs_eig_opts *o, int nev, size_t n)
 /* ------------------------------------------------------------------ */
 /* largest eigenvalue                                                  */
 
-/* A symmetric matrix as its diagonal and strict upper triangle (CSR, rows
- * sorted), optionally scaled two-sided, A = diag(s) K diag(s): the product
+/* A symmetric matrix as its diagonal and strict upper triangle, rows
+ * sorted, optionally scaled two-sided, A = diag(s) K diag(s): the product
  * reads half of the entries of K, which is what the Lanczos steps of
- * mfs_eig_max spend their memory bandwidth on.
+ * mfs_eig_max spend their memory bandwidth on.  A row's columns are stored
+ * as runs of consecutive columns (first column and length): on a lattice a
+ * row of the upper triangle is a few runs, one per row of particles of its
+ * support (5.5 entries per run on the cubic anti-plane model), so the
+ * product reads about 1.5 bytes of index per entry instead of 4, and the
+ * loop over a run reads x and updates y contiguously, two entries per
+ * 2-vector; the row's sum in two lanes (even and odd positions of its runs,
+ * an odd run's last entry apart), added at the row's end.  One loop over
+ * column indices, one entry at a time, ran at about half the bandwidth of
+ * the machine (its instructions, not its bytes, bounded it); the runs took
+ * 10-13 % less time per product in one process (bench_eigs 316, 200
+ * products of each alternating, load 5).
  *
  * The product runs on the threads by SYM_BLOCKS row blocks, cut where the
  * stored entries cross b nnz / SYM_BLOCKS; the number of blocks does not
@@ -415,22 +426,27 @@ static int default_ncv(const mfs_eig_opts *o, int nev, size_t n)
  * y for its own rows (the diagonal, its rows' sums, the scatter y_j +=
  * a_ij x_i for j in the block); the scatter beyond its last row goes into
  * the block's own band buffer z (columns cut[b+1] .. its largest column),
- * added to y after all blocks in the order of the blocks.  On a lattice
- * the band is a few rows of particles wide.  Below SYM_PARALLEL_MIN stored
- * entries (24 MB) the blocks run on the calling thread: a parallel region
- * per product cost more than it gained on the shared machine (the anti-plane
- * model at 10^4 nodes, 2 10^5 entries: 671 products in 0.53 s on one
- * thread, 0.76 s on two with OMP_WAIT_POLICY=passive, 1.8 s with libgomp's
- * default, at a load of 4-8; docs/benchmarks.md); with one thread too, and
- * then without a parallel region (the outlined loop of a one-thread region
- * ran about 20 % slower than the same loop inline, bench_eigs 316).  The
- * sums are the same. */
+ * added to y after all blocks in the order of the blocks; no run crosses
+ * its block's end.  On a lattice the band is a few rows of particles wide.
+ * Below SYM_PARALLEL_MIN stored entries (24 MB) the blocks run on the
+ * calling thread: a parallel region per product cost more than it gained
+ * on the shared machine (the anti-plane model at 10^4 nodes, 2 10^5
+ * entries: 671 products in 0.53 s on one thread, 0.76 s on two with
+ * OMP_WAIT_POLICY=passive, 1.8 s with libgomp's default, at a load of 4-8;
+ * docs/benchmarks.md); with one thread too, and then without a parallel
+ * region (the outlined loop of a one-thread region ran about 20 % slower
+ * than the same loop inline, bench_eigs 316).  The sums are the same. */
 #define SYM_BLOCKS 8
 #define SYM_PARALLEL_MIN ((size_t)1 << 21)
 typedef struct {
+  int col, len; /* columns col .. col + len - 1 */
+} sym_run;
+
+typedef struct {
   size_t n;
-  size_t *ptr;
-  int *idx;
+  size_t *ptr;  /* n + 1: row i's values val[ptr[i] .. ptr[i+1]-1] */
+  size_t *rptr; /* n + 1: row i's runs run[rptr[i] .. rptr[i+1]-1] */
+  sym_run *run;
   double *val, *diag;
   size_t cut[SYM_BLOCKS + 1];  /* block b: rows cut[b] .. cut[b+1]-1 */
   size_t zoff[SYM_BLOCKS + 1]; /* block b's band buffer: z[zoff[b] .. zoff[b+1]-1] */
@@ -440,11 +456,45 @@ typedef struct {
 static void sym_free(sym_csr *A)
 {
   mfs_free(A->ptr);
-  mfs_free(A->idx);
+  mfs_free(A->rptr);
+  mfs_free(A->run);
   mfs_free(A->val);
   mfs_free(A->diag);
   mfs_free(A->z);
   memset(A, 0, sizeof *A);
+}
+
+/* Entry e of row i (columns idx) starts a run: the first of its row, not
+ * the successor of the one before, or the first column beyond its block. */
+static int run_starts(const size_t *ptr, const int *idx, size_t i, size_t e, size_t hi)
+{
+  return e == ptr[i] || idx[e] != idx[e - 1] + 1 || (size_t)idx[e] == hi;
+}
+
+/* The runs of A's rows from their sorted columns idx (A's blocks cut). */
+static int sym_runs(sym_csr *A, const int *idx)
+{
+  size_t nr = 0;
+  for (int b = 0; b < SYM_BLOCKS; b++)
+    for (size_t i = A->cut[b]; i < A->cut[b + 1]; i++)
+      for (size_t e = A->ptr[i]; e < A->ptr[i + 1]; e++)
+        nr += (size_t)run_starts(A->ptr, idx, i, e, A->cut[b + 1]);
+  A->rptr = mfs_malloc((A->n + 1) * sizeof *A->rptr);
+  A->run = mfs_malloc((nr ? nr : 1) * sizeof *A->run);
+  if (!A->rptr || !A->run)
+    return MFS_ENOMEM;
+  size_t q = 0;
+  A->rptr[0] = 0;
+  for (int b = 0; b < SYM_BLOCKS; b++)
+    for (size_t i = A->cut[b]; i < A->cut[b + 1]; i++) {
+      for (size_t e = A->ptr[i]; e < A->ptr[i + 1]; e++)
+        if (run_starts(A->ptr, idx, i, e, A->cut[b + 1]))
+          A->run[q++] = (sym_run){.col = idx[e], .len = 1};
+        else
+          A->run[q - 1].len++;
+      A->rptr[i + 1] = q;
+    }
+  return MFS_OK;
 }
 
 static int sym_from(const mfs_csr *K, const double *s, sym_csr *A)
@@ -456,13 +506,12 @@ static int sym_from(const mfs_csr *K, const double *s, sym_csr *A)
       nnz += (size_t)K->idx[e] > i;
   A->n = n;
   A->ptr = mfs_malloc((n + 1) * sizeof *A->ptr);
-  A->idx = mfs_malloc((nnz ? nnz : 1) * sizeof *A->idx);
+  int *idx = mfs_malloc((nnz ? nnz : 1) * sizeof *idx); /* the columns, until the runs */
   A->val = mfs_malloc((nnz ? nnz : 1) * sizeof *A->val);
   A->diag = mfs_calloc(n ? n : 1, sizeof *A->diag);
-  if (!A->ptr || !A->idx || !A->val || !A->diag) {
-    sym_free(A);
-    return MFS_ENOMEM;
-  }
+  int st = MFS_ENOMEM;
+  if (!A->ptr || !idx || !A->val || !A->diag)
+    goto done;
   size_t p = 0;
   A->ptr[0] = 0;
   for (size_t i = 0; i < n; i++) {
@@ -474,11 +523,11 @@ static int sym_from(const mfs_csr *K, const double *s, sym_csr *A)
         A->diag[i] += v;
       } else if (j > i) { /* insertion keeps the row sorted whatever K's order */
         size_t k = p++;
-        for (; k > r0 && A->idx[k - 1] > (int)j; k--) {
-          A->idx[k] = A->idx[k - 1];
+        for (; k > r0 && idx[k - 1] > (int)j; k--) {
+          idx[k] = idx[k - 1];
           A->val[k] = A->val[k - 1];
         }
-        A->idx[k] = (int)j;
+        idx[k] = (int)j;
         A->val[k] = v;
       }
     }
@@ -498,26 +547,32 @@ static int sym_from(const mfs_csr *K, const double *s, sym_csr *A)
     size_t top = A->cut[b + 1];
     for (size_t i = A->cut[b]; i < top; i++)
       for (size_t e = A->ptr[i]; e < A->ptr[i + 1]; e++)
-        if ((size_t)A->idx[e] + 1 > top + w)
-          w = (size_t)A->idx[e] + 1 - top;
+        if ((size_t)idx[e] + 1 > top + w)
+          w = (size_t)idx[e] + 1 - top;
     A->zoff[b + 1] = A->zoff[b] + w;
     w = 0;
   }
   A->z = mfs_malloc((A->zoff[SYM_BLOCKS] ? A->zoff[SYM_BLOCKS] : 1) * sizeof *A->z);
-  if (!A->z) {
+  if (!A->z)
+    goto done;
+  st = sym_runs(A, idx);
+done:
+  mfs_free(idx);
+  if (st != MFS_OK)
     sym_free(A);
-    return MFS_ENOMEM;
-  }
-  return MFS_OK;
+  return st;
 }
 
-/* y = A x from the upper triangle: y_i += a_ij x_j and y_j += a_ij x_i,
- * block by block (sym_csr), then the band buffers in the order of the blocks. */
-/* Block b of the product: its rows into y, the band's terms into its buffer. */
+#if defined(__GNUC__)
+typedef double v2d __attribute__((vector_size(16)));
+#endif
+
+/* Block b of the product y = A x from the upper triangle, y_i += a_ij x_j
+ * and y_j += a_ij x_i: its rows into y, the band's terms into its buffer. */
 static inline void sym_block(const sym_csr *A, int b, const double *restrict x, double *restrict y)
 {
-  const size_t *restrict ptr = A->ptr;
-  const int *restrict idx = A->idx;
+  const size_t *restrict ptr = A->ptr, *restrict rptr = A->rptr;
+  const sym_run *restrict run = A->run;
   const double *restrict val = A->val, *restrict dg = A->diag;
   size_t lo = A->cut[b], hi = A->cut[b + 1];
   double *restrict zb = A->z + A->zoff[b];
@@ -527,25 +582,43 @@ static inline void sym_block(const sym_csr *A, int b, const double *restrict x, 
   for (size_t k = 0; k < wb; k++)
     zb[k] = 0.0;
   for (size_t i = lo; i < hi; i++) {
-    double xi = x[i], s = 0.0;
-    size_t e = ptr[i], e1 = ptr[i + 1], em = e1;
-    /* the columns are sorted: those of the block first, then the band's,
-     * which only the rows near the block's end have (the same terms in the
-     * same order as one loop with a test per entry) */
-    if (e1 > e && (size_t)idx[e1 - 1] >= hi)
-      while (em > e && (size_t)idx[em - 1] >= hi)
-        em--;
-    for (; e < em; e++) {
-      size_t j = (size_t)idx[e];
-      s += val[e] * x[j];
-      y[j] += val[e] * xi;
+    const double *v = val + ptr[i];
+    double xi = x[i], s0 = 0.0, s1 = 0.0, t = 0.0;
+#if defined(__GNUC__)
+    v2d acc = {0.0, 0.0}, xiv = {xi, xi};
+#endif
+    for (size_t r = rptr[i]; r < rptr[i + 1]; r++) {
+      size_t c = (size_t)run[r].col;
+      int len = run[r].len, k = 0;
+      const double *xr = x + c;
+      double *yr = c < hi ? y + c : zb + (c - hi);
+      for (; k + 1 < len; k += 2) {
+#if defined(__GNUC__)
+        v2d a, xx, yy;
+        memcpy(&a, v + k, sizeof a);
+        memcpy(&xx, xr + k, sizeof xx);
+        memcpy(&yy, yr + k, sizeof yy);
+        acc += a * xx;
+        yy += a * xiv;
+        memcpy(yr + k, &yy, sizeof yy);
+#else /* the same sums, lane by lane */
+        s0 += v[k] * xr[k];
+        s1 += v[k + 1] * xr[k + 1];
+        yr[k] += v[k] * xi;
+        yr[k + 1] += v[k + 1] * xi;
+#endif
+      }
+      if (k < len) {
+        t += v[k] * xr[k];
+        yr[k] += v[k] * xi;
+      }
+      v += len;
     }
-    for (; e < e1; e++) {
-      size_t j = (size_t)idx[e];
-      s += val[e] * x[j];
-      zb[j - hi] += val[e] * xi;
-    }
-    y[i] += s;
+#if defined(__GNUC__)
+    s0 = acc[0];
+    s1 = acc[1];
+#endif
+    y[i] += (s0 + s1) + t;
   }
 }
 
