@@ -14,6 +14,7 @@
 #include "mfs_lapack.h"
 #include "mfs_omp.h"
 #include "mfs_status.h"
+#include "mfs_symop.h"
 
 /* ARPACK (arpack-ng, gfortran, 32-bit integers): Fortran symbols with the
  * hidden string lengths last. */
@@ -118,7 +119,7 @@ static int pencil_check_any_mass(const mfs_pencil *P)
 static void info_reset(mfs_eig_info *info)
 {
   if (info)
-    *info = (mfs_eig_info){0, "", 0, 0, 0, 0, 0, 0.0, 0.0};
+    *info = (mfs_eig_info){.routine = ""};
 }
 
 /* ------------------------------------------------------------------ */
@@ -404,246 +405,11 @@ static int default_ncv(const mfs_eig_opts *o, int nev, size_t n)
 /* ------------------------------------------------------------------ */
 /* largest eigenvalue                                                  */
 
-/* A symmetric matrix as its diagonal and strict upper triangle, rows
- * sorted, optionally scaled two-sided, A = diag(s) K diag(s): the product
- * reads half of the entries of K, which is what the Lanczos steps of
- * mfs_eig_max spend their memory bandwidth on.  A row's columns are stored
- * as runs of consecutive columns (first column and length): on a lattice a
- * row of the upper triangle is a few runs, one per row of particles of its
- * support (5.5 entries per run on the cubic anti-plane model), so the
- * product reads about 1.5 bytes of index per entry instead of 4, and the
- * loop over a run reads x and updates y contiguously, two entries per
- * 2-vector; the row's sum in two lanes (even and odd positions of its runs,
- * an odd run's last entry apart), added at the row's end.  One loop over
- * column indices, one entry at a time, ran at about half the bandwidth of
- * the machine (its instructions, not its bytes, bounded it); the runs took
- * 10-13 % less time per product in one process (bench_eigs 316, 200
- * products of each alternating, load 5).
- *
- * The product runs on the threads by SYM_BLOCKS row blocks, cut where the
- * stored entries cross b nnz / SYM_BLOCKS; the number of blocks does not
- * depend on the thread count, so neither does the result.  A block writes
- * y for its own rows (the diagonal, its rows' sums, the scatter y_j +=
- * a_ij x_i for j in the block); the scatter beyond its last row goes into
- * the block's own band buffer z (columns cut[b+1] .. its largest column),
- * added to y after all blocks in the order of the blocks; no run crosses
- * its block's end.  On a lattice the band is a few rows of particles wide.
- * Below SYM_PARALLEL_MIN stored entries (24 MB) the blocks run on the
- * calling thread: a parallel region per product cost more than it gained
- * on the shared machine (the anti-plane model at 10^4 nodes, 2 10^5
- * entries: 671 products in 0.53 s on one thread, 0.76 s on two with
- * OMP_WAIT_POLICY=passive, 1.8 s with libgomp's default, at a load of 4-8;
- * docs/benchmarks.md); with one thread too, and then without a parallel
- * region (the outlined loop of a one-thread region ran about 20 % slower
- * than the same loop inline, bench_eigs 316).  The sums are the same. */
-#define SYM_BLOCKS 8
-#define SYM_PARALLEL_MIN ((size_t)1 << 21)
-typedef struct {
-  int col, len; /* columns col .. col + len - 1 */
-} sym_run;
-
-typedef struct {
-  size_t n;
-  size_t *ptr;  /* n + 1: row i's values val[ptr[i] .. ptr[i+1]-1] */
-  size_t *rptr; /* n + 1: row i's runs run[rptr[i] .. rptr[i+1]-1] */
-  sym_run *run;
-  double *val, *diag;
-  size_t cut[SYM_BLOCKS + 1];  /* block b: rows cut[b] .. cut[b+1]-1 */
-  size_t zoff[SYM_BLOCKS + 1]; /* block b's band buffer: z[zoff[b] .. zoff[b+1]-1] */
-  double *z;
-} sym_csr;
-
-static void sym_free(sym_csr *A)
-{
-  mfs_free(A->ptr);
-  mfs_free(A->rptr);
-  mfs_free(A->run);
-  mfs_free(A->val);
-  mfs_free(A->diag);
-  mfs_free(A->z);
-  memset(A, 0, sizeof *A);
-}
-
-/* Entry e of row i (columns idx) starts a run: the first of its row, not
- * the successor of the one before, or the first column beyond its block. */
-static int run_starts(const size_t *ptr, const int *idx, size_t i, size_t e, size_t hi)
-{
-  return e == ptr[i] || idx[e] != idx[e - 1] + 1 || (size_t)idx[e] == hi;
-}
-
-/* The runs of A's rows from their sorted columns idx (A's blocks cut). */
-static int sym_runs(sym_csr *A, const int *idx)
-{
-  size_t nr = 0;
-  for (int b = 0; b < SYM_BLOCKS; b++)
-    for (size_t i = A->cut[b]; i < A->cut[b + 1]; i++)
-      for (size_t e = A->ptr[i]; e < A->ptr[i + 1]; e++)
-        nr += (size_t)run_starts(A->ptr, idx, i, e, A->cut[b + 1]);
-  A->rptr = mfs_malloc((A->n + 1) * sizeof *A->rptr);
-  A->run = mfs_malloc((nr ? nr : 1) * sizeof *A->run);
-  if (!A->rptr || !A->run)
-    return MFS_ENOMEM;
-  size_t q = 0;
-  A->rptr[0] = 0;
-  for (int b = 0; b < SYM_BLOCKS; b++)
-    for (size_t i = A->cut[b]; i < A->cut[b + 1]; i++) {
-      for (size_t e = A->ptr[i]; e < A->ptr[i + 1]; e++)
-        if (run_starts(A->ptr, idx, i, e, A->cut[b + 1]))
-          A->run[q++] = (sym_run){.col = idx[e], .len = 1};
-        else
-          A->run[q - 1].len++;
-      A->rptr[i + 1] = q;
-    }
-  return MFS_OK;
-}
-
-static int sym_from(const mfs_csr *K, const double *s, sym_csr *A)
-{
-  size_t n = K->nrow, nnz = 0;
-  memset(A, 0, sizeof *A);
-  for (size_t i = 0; i < n; i++)
-    for (size_t e = K->ptr[i]; e < K->ptr[i + 1]; e++)
-      nnz += (size_t)K->idx[e] > i;
-  A->n = n;
-  A->ptr = mfs_malloc((n + 1) * sizeof *A->ptr);
-  int *idx = mfs_malloc((nnz ? nnz : 1) * sizeof *idx); /* the columns, until the runs */
-  A->val = mfs_malloc((nnz ? nnz : 1) * sizeof *A->val);
-  A->diag = mfs_calloc(n ? n : 1, sizeof *A->diag);
-  int st = MFS_ENOMEM;
-  if (!A->ptr || !idx || !A->val || !A->diag)
-    goto done;
-  size_t p = 0;
-  A->ptr[0] = 0;
-  for (size_t i = 0; i < n; i++) {
-    size_t r0 = p;
-    for (size_t e = K->ptr[i]; e < K->ptr[i + 1]; e++) {
-      size_t j = (size_t)K->idx[e];
-      double v = s ? s[i] * K->val[e] * s[j] : K->val[e];
-      if (j == i) {
-        A->diag[i] += v;
-      } else if (j > i) { /* insertion keeps the row sorted whatever K's order */
-        size_t k = p++;
-        for (; k > r0 && idx[k - 1] > (int)j; k--) {
-          idx[k] = idx[k - 1];
-          A->val[k] = A->val[k - 1];
-        }
-        idx[k] = (int)j;
-        A->val[k] = v;
-      }
-    }
-    A->ptr[i + 1] = p;
-  }
-  /* the blocks and their band buffers */
-  size_t r = 0, w = 0;
-  A->cut[0] = 0;
-  for (int b = 1; b <= SYM_BLOCKS; b++) {
-    size_t want = (size_t)((double)nnz * b / SYM_BLOCKS);
-    while (r < n && (b == SYM_BLOCKS || A->ptr[r] < want))
-      r++;
-    A->cut[b] = r;
-  }
-  A->zoff[0] = 0;
-  for (int b = 0; b < SYM_BLOCKS; b++) {
-    size_t top = A->cut[b + 1];
-    for (size_t i = A->cut[b]; i < top; i++)
-      for (size_t e = A->ptr[i]; e < A->ptr[i + 1]; e++)
-        if ((size_t)idx[e] + 1 > top + w)
-          w = (size_t)idx[e] + 1 - top;
-    A->zoff[b + 1] = A->zoff[b] + w;
-    w = 0;
-  }
-  A->z = mfs_malloc((A->zoff[SYM_BLOCKS] ? A->zoff[SYM_BLOCKS] : 1) * sizeof *A->z);
-  if (!A->z)
-    goto done;
-  st = sym_runs(A, idx);
-done:
-  mfs_free(idx);
-  if (st != MFS_OK)
-    sym_free(A);
-  return st;
-}
-
-#if defined(__GNUC__)
-typedef double v2d __attribute__((vector_size(16)));
-#endif
-
-/* Block b of the product y = A x from the upper triangle, y_i += a_ij x_j
- * and y_j += a_ij x_i: its rows into y, the band's terms into its buffer. */
-static inline void sym_block(const sym_csr *A, int b, const double *restrict x, double *restrict y)
-{
-  const size_t *restrict ptr = A->ptr, *restrict rptr = A->rptr;
-  const sym_run *restrict run = A->run;
-  const double *restrict val = A->val, *restrict dg = A->diag;
-  size_t lo = A->cut[b], hi = A->cut[b + 1];
-  double *restrict zb = A->z + A->zoff[b];
-  size_t wb = A->zoff[b + 1] - A->zoff[b];
-  for (size_t i = lo; i < hi; i++)
-    y[i] = dg[i] * x[i];
-  for (size_t k = 0; k < wb; k++)
-    zb[k] = 0.0;
-  for (size_t i = lo; i < hi; i++) {
-    const double *v = val + ptr[i];
-    double xi = x[i], s0 = 0.0, s1 = 0.0, t = 0.0;
-#if defined(__GNUC__)
-    v2d acc = {0.0, 0.0}, xiv = {xi, xi};
-#endif
-    for (size_t r = rptr[i]; r < rptr[i + 1]; r++) {
-      size_t c = (size_t)run[r].col;
-      int len = run[r].len, k = 0;
-      const double *xr = x + c;
-      double *yr = c < hi ? y + c : zb + (c - hi);
-      for (; k + 1 < len; k += 2) {
-#if defined(__GNUC__)
-        v2d a, xx, yy;
-        memcpy(&a, v + k, sizeof a);
-        memcpy(&xx, xr + k, sizeof xx);
-        memcpy(&yy, yr + k, sizeof yy);
-        acc += a * xx;
-        yy += a * xiv;
-        memcpy(yr + k, &yy, sizeof yy);
-#else /* the same sums, lane by lane */
-        s0 += v[k] * xr[k];
-        s1 += v[k + 1] * xr[k + 1];
-        yr[k] += v[k] * xi;
-        yr[k + 1] += v[k + 1] * xi;
-#endif
-      }
-      if (k < len) {
-        t += v[k] * xr[k];
-        yr[k] += v[k] * xi;
-      }
-      v += len;
-    }
-#if defined(__GNUC__)
-    s0 = acc[0];
-    s1 = acc[1];
-#endif
-    y[i] += (s0 + s1) + t;
-  }
-}
-
-static void sym_matvec(const sym_csr *A, const double *restrict x, double *restrict y)
-{
-  const int nt = mfs_omp_threads(), par = nt > 1 && A->ptr[A->n] >= SYM_PARALLEL_MIN;
-  if (par) {
-    MFS_OMP("omp parallel for schedule(static) num_threads(nt)")
-    for (int b = 0; b < SYM_BLOCKS; b++)
-      sym_block(A, b, x, y);
-  } else { /* the same blocks on the calling thread, without a parallel region */
-    for (int b = 0; b < SYM_BLOCKS; b++)
-      sym_block(A, b, x, y);
-  }
-  for (int b = 0; b < SYM_BLOCKS; b++) {
-    size_t hi = A->cut[b + 1], wb = A->zoff[b + 1] - A->zoff[b];
-    const double *zb = A->z + A->zoff[b];
-    for (size_t k = 0; k < wb; k++)
-      y[hi + k] += zb[k];
-  }
-}
-
+/* The product of mfs_eig_max: A = M^-1/2 K M^-1/2 (lumped) or K
+ * (consistent) as lib/analysis/mfs_symop.h stores it, half of K's bytes. */
 typedef struct {
   const mfs_pencil *P;
-  sym_csr A;   /* lumped: M^-1/2 K M^-1/2; consistent: K */
+  mfs_symop A; /* lumped: M^-1/2 K M^-1/2; consistent: K */
   double *s;   /* lumped: m^-1/2 */
   double *t;   /* work, n */
   chol_solver *ch;
@@ -655,7 +421,7 @@ static int op_lumped(void *vc, int ido, double *x, double *y, const double *bx)
   (void)ido;
   (void)bx;
   max_ctx *c = vc;
-  sym_matvec(&c->A, x, y);
+  mfs_symop_apply(&c->A, x, y);
   return MFS_OK;
 }
 
@@ -669,7 +435,7 @@ static int op_consistent(void *vc, int ido, double *x, double *y, const double *
     matvec(c->P->M, x, y);
     return MFS_OK;
   }
-  sym_matvec(&c->A, x, c->t);
+  mfs_symop_apply(&c->A, x, c->t);
   memcpy(x, c->t, n * sizeof *x);
   return chol_solve(c->ch, c->t, y);
 }
@@ -724,14 +490,16 @@ mfs_status mfs_eig_max(const mfs_pencil *P, const mfs_eig_opts *opts, double *la
       goto done;
     for (size_t i = 0; i < n; i++)
       c.s[i] = 1.0 / sqrt(P->m[i]);
-    st = sym_from(P->K, c.s, &c.A);
+    int have_y;
+    st = mfs_symop_build(P->K, c.s, NULL, NULL, mfs_omp_threads(), 0, &c.A, &have_y);
     if (st != MFS_OK)
       goto done;
     j.mode = 1;
     j.bmat = 'I';
     j.op = op_lumped;
   } else {
-    st = sym_from(P->K, NULL, &c.A);
+    int have_y;
+    st = mfs_symop_build(P->K, NULL, NULL, NULL, mfs_omp_threads(), 0, &c.A, &have_y);
     if (st != MFS_OK)
       goto done;
     chol_start(&ch);
@@ -745,7 +513,9 @@ mfs_status mfs_eig_max(const mfs_pencil *P, const mfs_eig_opts *opts, double *la
   st = arpack_run(&j, info);
   if (st != MFS_OK)
     goto done;
-  sym_free(&c.A); /* before the residual: give the memory back */
+  if (info)
+    info->op_bytes = mfs_symop_bytes(&c.A);
+  mfs_symop_free(&c.A); /* before the residual: give the memory back */
   if (P->m) /* eigenvector of the pencil: M^-1/2 u, M-normalized as u is normalized */
     for (size_t i = 0; i < n; i++)
       z[i] *= c.s[i];
@@ -756,7 +526,7 @@ mfs_status mfs_eig_max(const mfs_pencil *P, const mfs_eig_opts *opts, double *la
     memcpy(v, z, n * sizeof *v);
 done:
   chol_free(&ch);
-  sym_free(&c.A);
+  mfs_symop_free(&c.A);
   mfs_free(c.s);
   mfs_free(c.t);
   mfs_free(start);

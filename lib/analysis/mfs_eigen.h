@@ -82,6 +82,8 @@ typedef struct {
   double op_seconds;  /* wall clock spent in the operations OP x and B x (the products
                          and solves), summed over runs; the rest of a run is ARPACK's
                          (0 from the distributed mfs_peig_max) */
+  double op_bytes;    /* mfs_eig_max: the bytes one product of its stored operator reads and
+                         writes at least once (lib/analysis/mfs_symop.h); 0 elsewhere */
 } mfs_eig_info;
 
 /* Records the failing call (routine, its code) in info, which may be NULL;

@@ -76,6 +76,8 @@ typedef struct {
   double setup_seconds; /* wall clock of building the stored operator (in the total, not in
                            op_seconds) */
   int block;         /* 1 or 2: the storage's block size */
+  int build_product; /* 1: the build took the first product (the 2 x 2 copy; its time is in
+                        setup_seconds, not in op_seconds) */
   double bytes;      /* bytes one product reads and writes at least once: the stored operator
                         (values, indices, row pointers, diagonal), x read and y written */
 } mfs_lanczos_info;

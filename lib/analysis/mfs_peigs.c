@@ -1078,7 +1078,7 @@ mfs_status mfs_peig_max(const mfs_pmodel *pm, const mfs_eig_opts *opts, double *
                         mfs_eig_info *info)
 {
   if (info)
-    *info = (mfs_eig_info){0, "", 0, 0, 0, 0, 0, 0.0, 0.0};
+    *info = (mfs_eig_info){.routine = ""};
   if (!pm || !pm->K || !pm->lumped || pm->ndofs < 2)
     return MFS_EINVAL;
   const size_t nr = pm->nrow;
