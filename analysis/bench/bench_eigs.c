@@ -6,9 +6,11 @@
  *   bench_eigs NSIDE [--ncv K] [--tol T] [--export PREFIX] [--header]
  * prints one CSV row (with --header, the header first):
  *   tool,nodes,dofs,nnz_K,setup_s,bound_s,eig_s,iterations,matvecs,lambda_max,
- *   bound,residual,peak_rss_mb
+ *   bound,residual,peak_rss_mb,op_bytes
  * setup_s: particles, quadrature, shape table and assembly; bound_s: the
- * streaming bound alone (it builds its own particles); eig_s: ARPACK.
+ * streaming bound alone (it builds its own particles); eig_s: ARPACK;
+ * op_bytes: what one product of its stored operator reads and writes
+ * (mfs_eig_info.op_bytes).
  * --export writes PREFIX_K.mtx and PREFIX_M.mtx for the SciPy comparison. */
 #include <stdio.h>
 #include <stdlib.h>
@@ -78,9 +80,9 @@ int main(int argc, char **argv)
   }
   if (header)
     printf("tool,nodes,dofs,nnz_K,setup_s,bound_s,eig_s,iterations,matvecs,lambda_max,bound,"
-           "residual,peak_rss_mb\n");
+           "residual,peak_rss_mb,op_bytes\n");
   if (bound_only) {
-    printf("mfstab-bound,%d,%d,0,0,%.4f,0,0,0,0,%.10g,0,%.1f\n", nside * nside, nside * nside,
+    printf("mfstab-bound,%d,%d,0,0,%.4f,0,0,0,0,%.10g,0,%.1f,\n", nside * nside, nside * nside,
            bound_s, br.lambda, peak_mb());
     return 0;
   }
@@ -117,9 +119,9 @@ int main(int argc, char **argv)
     fprintf(stderr, "bench_eigs: ARPACK: %s (info %d)\n", mfs_strerror(st), info.info);
     return 1;
   }
-  printf("mfstab,%d,%zu,%zu,%.4f,%.4f,%.4f,%d,%d,%.12g,%.10g,%.3g,%.1f\n", nside * nside, m->n,
+  printf("mfstab,%d,%zu,%zu,%.4f,%.4f,%.4f,%d,%d,%.12g,%.10g,%.3g,%.1f,%.0f\n", nside * nside, m->n,
          m->K->ptr[m->n], setup_s, bound_s, eig_s, info.iterations, info.matvecs, lam, br.lambda,
-         info.residual, peak_mb());
+         info.residual, peak_mb(), info.op_bytes);
   mfs_model_free(m);
   return 0;
 }

@@ -18,7 +18,9 @@
 #   BENCH_EIGS / MFSTAB (override the binaries).
 #
 # CSV: tool,phase,nodes,dofs,nnz_K,seconds,arpack_iterations,matvecs,
-#      lambda_max,error,peak_rss_mb,ncv,tol
+#      lambda_max,error,peak_rss_mb,ncv,tol,op_bytes
+#   op_bytes: mfstab eigs: the bytes one product of its stored operator reads and
+#   writes (mfs_eig_info.op_bytes, the limit's bytes); empty otherwise.
 #   error: mfstab eigs: ||K v - lambda M v|| / (lambda ||M v||); scipy eigsh:
 #   |lambda_scipy - lambda_mfstab| / lambda_mfstab; empty otherwise.
 #   peak_rss_mb: peak resident memory of the process (mfstab: model assembly
@@ -45,7 +47,7 @@ work=$(mktemp -d "${TMPDIR:-/tmp}/bench_eigs.XXXXXX")
 trap 'rm -rf "$work"' EXIT
 mkdir -p "$(dirname "$OUT")"
 tmpout="$OUT.tmp.$$"
-echo "tool,phase,nodes,dofs,nnz_K,seconds,arpack_iterations,matvecs,lambda_max,error,peak_rss_mb,ncv,tol" > "$tmpout"
+echo "tool,phase,nodes,dofs,nnz_K,seconds,arpack_iterations,matvecs,lambda_max,error,peak_rss_mb,ncv,tol,op_bytes" > "$tmpout"
 
 have_scipy=1
 $PY -c 'import scipy' 2>/dev/null || { have_scipy=0; echo "bench_eigs.sh: no SciPy for $PY; skipping it" >&2; }
@@ -60,14 +62,14 @@ for n in "${SIDES[@]}"; do
       best=$row
     fi
   done
-  IFS=, read -r _ _ dofs nnz setup bound_s eig_s iters mv lam bound resid peak <<< "$best"
-  echo "mfstab,setup,$nodes,$dofs,$nnz,$setup,,,,,$peak,," >> "$tmpout"
-  echo "mfstab,eigs,$nodes,$dofs,$nnz,$eig_s,$iters,$mv,$lam,$resid,$peak,$NCV,$TOL" >> "$tmpout"
-  echo "mfstab,bound-library,$nodes,$dofs,$nnz,$bound_s,,,$bound,,,," >> "$tmpout"
+  IFS=, read -r _ _ dofs nnz setup bound_s eig_s iters mv lam bound resid peak opb <<< "$best"
+  echo "mfstab,setup,$nodes,$dofs,$nnz,$setup,,,,,$peak,,," >> "$tmpout"
+  echo "mfstab,eigs,$nodes,$dofs,$nnz,$eig_s,$iters,$mv,$lam,$resid,$peak,$NCV,$TOL,$opb" >> "$tmpout"
+  echo "mfstab,bound-library,$nodes,$dofs,$nnz,$bound_s,,,$bound,,,,," >> "$tmpout"
   # the command, wall clock and peak memory of the whole process
   t=$( { /usr/bin/time -f "%e %M" "$MFSTAB" bound --dim 2 --nodes "$n,$n" --kernel cubic \
          --shape mls --dilation 2 --quadrature gauss2 -o "$work/bound.csv" ; } 2>&1 | tail -1 )
-  echo "mfstab,bound-command,$nodes,$dofs,$nnz,${t% *},,,,,$(awk -v k="${t#* }" 'BEGIN{printf "%.1f", k/1024}'),," >> "$tmpout"
+  echo "mfstab,bound-command,$nodes,$dofs,$nnz,${t% *},,,,,$(awk -v k="${t#* }" 'BEGIN{printf "%.1f", k/1024}'),,," >> "$tmpout"
   echo "side $n: mfstab eigs ${eig_s} s ($iters iterations, $mv products), bound ${bound_s} s, command ${t% *} s" >&2
 
   if [ "$have_scipy" = 1 ] && [ "$n" -le "$SCIPY_MAX_SIDE" ]; then
@@ -112,8 +114,8 @@ for _ in range(reps):
         best = (te, cnt[0], w[0])
 peak = resource.getrusage(resource.RUSAGE_SELF).ru_maxrss / 1024.0
 te, nmv, lam = best
-print(f"scipy,load,{nodes},{n},{nnz},{t_load:.4f},,,,,{peak:.1f},,")
-print(f"scipy,eigsh,{nodes},{n},{nnz},{te:.4f},,{nmv},{lam:.12g},{abs(lam - lam_ref) / lam_ref:.3g},{peak:.1f},{ncv},{tol:g}")
+print(f"scipy,load,{nodes},{n},{nnz},{t_load:.4f},,,,,{peak:.1f},,,")
+print(f"scipy,eigsh,{nodes},{n},{nnz},{te:.4f},,{nmv},{lam:.12g},{abs(lam - lam_ref) / lam_ref:.3g},{peak:.1f},{ncv},{tol:g},")
 print(f"side: scipy eigsh {te:.3f} s ({nmv} products), load {t_load:.1f} s", file=sys.stderr)
 EOF
     rm -f "$work"/m_K.mtx "$work"/m_M.mtx

@@ -47,7 +47,10 @@ def full_matvec_bytes(n, nnz, ptr=8.0, vectors=3):
 def eigs(row, bw):
     n, nnz, mv, s = f(row, "dofs"), f(row, "nnz_K"), f(row, "matvecs"), f(row, "seconds")
     if row["phase"] == "eigs" and n and nnz and mv:
-        return "bytes", mv * half_matvec_bytes(n, nnz) / bw[1], s
+        # op_bytes: what the stored operator's product reads (mfs_eig_info.op_bytes);
+        # rows without it are from the scalar half storage of before (12 B per entry)
+        ob = f(row, "op_bytes")
+        return "bytes", mv * (ob if ob else half_matvec_bytes(n, nnz)) / bw[1], s
     if row["phase"] == "eigsh" and n and nnz and mv:  # SciPy: int32 indptr, x and y
         return "bytes", mv * full_matvec_bytes(n, nnz, 4.0, 2) / bw[1], s
     if row["phase"] == "setup" and n and nnz:  # K written once (assembly)
