@@ -21,9 +21,14 @@ as for the C side.  Each run: the C bench's median of --repeat 3, then the
 NumPy median of 3 repeats; over --runs N (>= 5) runs, min / median / max of
 each and of the ratio NumPy / C; the load average (1 min) at every run.
 CSV (default notebooks-data/bench_dispersion_numpy.csv):
-  family,comparison,run,c_ns_per_point,numpy_ns_per_point,ratio,numpy_error,load1
+  family,comparison,run,c_ns_per_point,numpy_ns_per_point,ratio,numpy_error,load1,
+  flop_per_point
 with rows run = min, median, max after the runs; numpy_error the largest
-|NumPy - C| over the largest |C| omega2.
+|NumPy - C| over the largest |C| omega2; flop_per_point the minimal work of a
+point, the C phase's gflop (bench_dispersion: the folded lattice sums once per
+wave vector, shared by the stresses) over its points, the same for both sides
+(analysis/bench/limits.py states it against dgemm's rate: fraction for the C
+side, numpy_fraction for NumPy).
 usage: /usr/bin/python3 analysis/bench/bench_dispersion_numpy.py [--runs N]
        [--bench PATH] [-o FILE]
 Not a test: nothing asserts a time."""
@@ -48,7 +53,8 @@ def load1():
 def c_run(bench, family, tmp):
     out = subprocess.run([bench, '--family', family, '--repeat', '3', '--no-threads',
                           '--numpy-data', tmp], check=True, capture_output=True, text=True).stdout
-    return {r['phase']: float(r['ns_per_point']) for r in csv.DictReader(io.StringIO(out))}
+    return {r['phase']: (float(r['ns_per_point']), 1e9 * float(r['gflop']) / float(r['points']))
+            for r in csv.DictReader(io.StringIO(out))}
 
 
 def median_time(f, reps=3):
@@ -145,27 +151,29 @@ def main():
                         continue
                     t = median_time(fns[variant])
                     nns = 1e9 * t / npts
-                    rows.append([fam, '%s/%s' % (variant, phase), run, c[phase], nns, nns / c[phase],
-                                 err, l])
+                    cns, fpp = c[phase]
+                    rows.append([fam, '%s/%s' % (variant, phase), run, cns, nns, nns / cns,
+                                 err, l, fpp])
     summary = []
     for f, variant, phase in comps:
         name = '%s/%s' % (variant, phase)
         rs = [r for r in rows if r[0] == f and r[1] == name]
         for what, fn in (('min', min), ('median', statistics.median), ('max', max)):
             summary.append([f, name, what, fn(r[3] for r in rs), fn(r[4] for r in rs),
-                            fn(r[5] for r in rs), max(r[6] for r in rs), fn(r[7] for r in rs)])
+                            fn(r[5] for r in rs), max(r[6] for r in rs), fn(r[7] for r in rs),
+                            rs[0][8]])
     os.makedirs(os.path.dirname(os.path.abspath(a.o)), exist_ok=True)
     with open(a.o, 'w', newline='') as f:
         w = csv.writer(f)
         w.writerow(['family', 'comparison', 'run', 'c_ns_per_point', 'numpy_ns_per_point', 'ratio',
-                    'numpy_error', 'load1'])
+                    'numpy_error', 'load1', 'flop_per_point'])
         for r in rows + summary:
             w.writerow([r[0], r[1], r[2], '%.4g' % r[3], '%.4g' % r[4], '%.4g' % r[5], '%.3g' % r[6],
-                        '%.2f' % r[7]])
+                        '%.2f' % r[7], '%.6g' % r[8]])
     print('%-14s %-24s %-6s %10s %12s %8s %10s %6s' % ('family', 'numpy/C phase', 'run', 'C ns/pt',
                                                        'NumPy ns/pt', 'ratio', 'error', 'load'))
     for r in summary:
-        print('%-14s %-24s %-6s %10.4g %12.4g %8.3g %10.2g %6.2f' % tuple(r))
+        print('%-14s %-24s %-6s %10.4g %12.4g %8.3g %10.2g %6.2f' % tuple(r[:8]))
     print('wrote %s' % a.o)
 
 

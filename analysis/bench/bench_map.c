@@ -13,8 +13,17 @@
  * Not a test: nothing here asserts a time.
  * CSV (stdout or -o FILE): frame,grid,points,threads,plan_s,grid_s,total_s,
  *   s_per_point,speedup,identical,pde_stable,stable,stable_outside_pde,singular,
- *   peak_rss_mb,load1   (the least of --repeat runs; stable_outside_pde is the
- *   check: the Lagrangian domain lies within the PDE's)
+ *   peak_rss_mb,load1,gflop   (the least of --repeat runs; stable_outside_pde is
+ *   the check: the Lagrangian domain lies within the PDE's)
+ * gflop: the minimal work of the grid (10^9 flops; analysis/bench/limits.py
+ *   states it against dgemm's rate): the folded lattice sums, 2 flops per
+ *   offset and component of the plan (mfs_disp_plan_work), at every wave
+ *   vector whose sums are evaluated: Lagrangian, the zone samples' once (the
+ *   sample object, in plan_s) and per grid point the 64 + 2 ray samples', plus
+ *   per point and zone sample 2 flops per component (each enters the state's
+ *   symbol with at least a multiply and an add); Eulerian, per grid point its
+ *   own plan's sums at all 8 x 64 + 64 + 2 samples (a point whose plan is
+ *   singular: none).  The plans, phases and eigen solves are above the bound.
  * usage: bench_map [--repeat R] [-o FILE] [N ...]   (default N = 60) */
 #include <complex.h>
 #undef I
@@ -108,6 +117,8 @@ static double run(FILE *out, int N, mfs_frame fr, int repeat, int nt, int *res, 
   const int lag = fr == MFS_FRAME_LAGRANGIAN;
   const long npt = (long)N * N;
   double best_plan = INFINITY, best_grid = INFINITY;
+  const size_t nz = NDIR * NWAVE, nr = NWAVE + 2; /* zone and ray samples per point */
+  unsigned long long flops = 0;                   /* of one run (the same every run) */
   double *kz = malloc(2 * NDIR * NWAVE * (size_t)(nt + 1) * sizeof *kz);
 #ifdef _OPENMP
   omp_set_num_threads(nt);
@@ -126,9 +137,14 @@ static double run(FILE *out, int N, mfs_frame fr, int repeat, int nt, int *res, 
       }
       zone(pl, kz);
       smp = mfs_disp_sample_alloc(pl, NDIR * NWAVE, kz, &st);
+      size_t no;
+      int nc;
+      mfs_disp_plan_work(pl, &no, &nc);
+      flops = 2ull * no * nc * nz + (unsigned long long)npt * 2ull * nc * (no * nr + nz);
     }
     double t1p = now();
-    MFS_OMP("omp parallel for schedule(dynamic)")
+    unsigned long long fe = 0; /* the Eulerian points' sums */
+    MFS_OMP("omp parallel for schedule(dynamic) reduction(+ : fe)")
     for (long q = 0; q < npt; q++) {
       int th = 0;
 #ifdef _OPENMP
@@ -151,11 +167,17 @@ static double run(FILE *out, int N, mfs_frame fr, int repeat, int nt, int *res, 
           continue;
         }
         zone(own, kzt);
+        size_t no;
+        int nc;
+        mfs_disp_plan_work(own, &no, &nc);
+        fe += 2ull * no * nc * (nz + nr);
       }
       res[q] = evaluate(own ? own : pl, own ? NULL : smp, own ? kzt : kz, &ps, &e, lag) + pde;
       mfs_disp_plan_free(own);
     }
     double t2 = now();
+    if (!lag)
+      flops = fe;
     mfs_disp_sample_free(smp);
     mfs_disp_plan_free(pl);
     best_plan = fmin(best_plan, t1p - t0);
@@ -172,10 +194,10 @@ static double run(FILE *out, int N, mfs_frame fr, int repeat, int nt, int *res, 
     same &= !res1 || res1[q] == res[q];
   }
   double tot = best_plan + best_grid;
-  fprintf(out, "%s,%dx%d,%ld,%d,%.6g,%.6g,%.6g,%.6g,%.4g,%s,%d,%d,%d,%d,%.1f,%.2f\n",
+  fprintf(out, "%s,%dx%d,%ld,%d,%.6g,%.6g,%.6g,%.6g,%.4g,%s,%d,%d,%d,%d,%.1f,%.2f,%.6g\n",
           mfs_frame_name(fr), N, N, npt, nt, best_plan, best_grid, tot, tot / npt,
           res1 ? t1 / tot : 1.0, res1 ? (same ? "1" : "0") : "", npde, nst, nout, nsing, rss_mb(),
-          bench_load1());
+          bench_load1(), 1e-9 * (double)flops);
   fflush(out);
   return tot;
 }
@@ -205,7 +227,7 @@ int main(int argc, char **argv)
   if (repeat < 1)
     repeat = 1;
   fprintf(out, "frame,grid,points,threads,plan_s,grid_s,total_s,s_per_point,speedup,identical,"
-               "pde_stable,stable,stable_outside_pde,singular,peak_rss_mb,load1\n");
+               "pde_stable,stable,stable_outside_pde,singular,peak_rss_mb,load1,gflop\n");
   const mfs_frame frames[3] = {MFS_FRAME_LAGRANGIAN, MFS_FRAME_EULERIAN, MFS_FRAME_EULERIAN_CONSISTENT};
   for (int s = 0; s < ns; s++)
     for (int f = 0; f < 3; f++) {

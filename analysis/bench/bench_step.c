@@ -15,8 +15,13 @@
  * the ARPACK lambda_max of the certified run, at MFS_DT_ARPACK_TOL), proven,
  * time_ratio_power (median / the power rule's median), arpack_tol (certified
  * only), load_1min (the 1-minute load average of /proc/loadavg, the largest
- * seen during the scene's rows: the machine is shared), peak_rss_mb.  Not a
- * test: nothing here asserts a time.
+ * seen during the scene's rows: the machine is shared), peak_rss_mb, nnz_K
+ * (the stored entries of K on the free degrees of freedom, the operator the
+ * rules bound: the plate's model->K; the rod's rules work from the plan
+ * without K, so its K(Cbar) is assembled once outside the timing, by an
+ * mfs_model of the same discretization with the ends fixed, only to count
+ * them: analysis/bench/limits.py's limit of the row).  Not a test: nothing
+ * here asserts a time.
  *
  * The certified rule on the rod is slow: its top eigenvalues cluster (the
  * sawtooth's neighbours lie within (pi/N)^2 of it) and ARPACK needs many
@@ -59,11 +64,27 @@ static mfs_status choose(solver *s, mfs_dt_rule r, mfs_dt_info *info)
 
 static int certified_max = 20000;
 
+/* The stored entries of the rod's K(Cbar) on the free particles: an
+ * mfs_model of the same discretization, ends fixed (0 on failure). */
+static size_t rod_nnz(const mfs_disc *d)
+{
+  mfs_model_spec ms = mfs_model_spec_default();
+  ms.disc = *d;
+  ms.disc.material.modulus += ms.disc.material.initial_stress;
+  ms.disc.material.initial_stress = 0.0;
+  ms.fixed = MFS_FIX_ENDS;
+  mfs_status st;
+  mfs_model *md = mfs_model_alloc(&ms, &st, NULL);
+  size_t nnz = md ? md->K->ptr[md->K->nrow] : 0;
+  mfs_model_free(md);
+  return nnz;
+}
+
 static mfs_status scene(FILE *f, int plate, int n, int reps)
 {
   solver s = {0};
   mfs_status st;
-  size_t dofs;
+  size_t dofs, nnz;
   if (plate) {
     int m = (int)lround(sqrt((double)n));
     mfs_model_spec sp = mfs_model_spec_default();
@@ -81,6 +102,7 @@ static mfs_status scene(FILE *f, int plate, int n, int reps)
       return st;
     n = m * m;
     dofs = s.plate->n;
+    nnz = s.plate->model->K->ptr[s.plate->model->K->nrow];
   } else {
     mfs_disc d = mfs_disc_default();
     d.source = (mfs_source){.lattice = MFS_LATTICE_LINE, .nx = n, .lx = 1.0};
@@ -95,6 +117,7 @@ static mfs_status scene(FILE *f, int plate, int n, int reps)
     if (!(s.rod = mfs_solver_alloc(&sp, &st, NULL)))
       return st;
     dofs = s.rod->n - 2;
+    nnz = rod_nnz(&d);
   }
   double sec[NRULE][MAXREP], load = bench_load1();
   mfs_dt_info info[NRULE];
@@ -125,7 +148,10 @@ static mfs_status scene(FILE *f, int plate, int n, int reps)
       fprintf(f, ",%d,%.4g,", info[r].proven, med[r] / med[0]);
       if (info[r].arpack_tol > 0.0)
         fprintf(f, "%g", info[r].arpack_tol);
-      fprintf(f, ",%.2f,%.1f\n", load, bench_peak_mb());
+      fprintf(f, ",%.2f,%.1f,", load, bench_peak_mb());
+      if (nnz)
+        fprintf(f, "%zu", nnz);
+      fputc('\n', f);
     }
     fflush(f);
   }
@@ -162,7 +188,7 @@ int main(int argc, char **argv)
     return 1;
   }
   fputs("scene,rule,particles,dofs,reps,seconds_min,seconds_median,seconds_max,lambda_per_s2,"
-        "lambda_ratio,proven,time_ratio_power,arpack_tol,load_1min,peak_rss_mb\n",
+        "lambda_ratio,proven,time_ratio_power,arpack_tol,load_1min,peak_rss_mb,nnz_K\n",
         f);
   mfs_status st = MFS_OK;
   for (int plate = 0; plate < 2 && st == MFS_OK; plate++)

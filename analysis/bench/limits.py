@@ -15,7 +15,9 @@ FILE, default the repository's, read when --gbs is not given).  --rule NAME
 each benchmark's limit counts is in docs/benchmarks.md; the rules are below,
 one function per CSV, chosen by the file name.  bench_lambda.csv and
 bench_assembly.csv compute their limits themselves (bench_lambda.c,
-bench_assembly.c): for them only limit_kind is filled where missing.
+bench_assembly.c): for them only limit_kind is filled where missing.  Two
+CSVs get a second fraction for a second time of the same work:
+bench_table4's cd1_fraction, bench_dispersion_numpy's numpy_fraction.
 """
 import argparse
 import csv
@@ -129,6 +131,58 @@ def dispersion(row, bw, gflops):
     return "none", None, s
 
 
+def dispersion_numpy(row, bw, gflops):
+    """bench_dispersion_numpy: per point (the columns are ns per point) the
+    C phase's minimal work (flop_per_point: bench_dispersion's gflop over its
+    points, the folded sums once per wave vector), at dgemm's one-thread
+    rate, against c_ns_per_point; the same flops against numpy_ns_per_point
+    into the extra column numpy_fraction."""
+    fpp, tc, tn = f(row, "flop_per_point"), f(row, "c_ns_per_point"), f(row, "numpy_ns_per_point")
+    row["numpy_fraction"] = ""
+    if not fpp:
+        return "none", None, None
+    lim = fpp / gflops
+    if tn:
+        row["numpy_fraction"] = f"{lim / (tn * 1e-9):.4f}"
+    return "flops", lim, tc * 1e-9 if tc else None
+
+
+def dispersion_map(row, bw, gflops):
+    """bench_map, bench_map_command: the stability map's lattice sums (the
+    gflop column: bench_map.c counts them point by point, 2 flops per folded
+    offset and component at every wave vector sample whose sums a grid point
+    evaluates, the Lagrangian zone samples' once), at dgemm's one-thread rate
+    times the row's threads, against total_s (bench_map) or wall_s (the
+    command)."""
+    g, t = f(row, "gflop"), f(row, "threads") or 1.0
+    s = f(row, "total_s") if f(row, "total_s") is not None else f(row, "wall_s")
+    if g:
+        return "flops", g * 1e9 / (gflops * t), s
+    return "none", None, s
+
+
+def step(row, bw):
+    """bench_step: the Gershgorin bound max_i sum_j |K_ij| / m_i is one pass
+    over K's stored entries (nnz_K: 8 B per value; the column indices are not
+    needed for row sums), its row pointers (8 B) and the masses (8 B per
+    unknown); the power rule 300 products with K (12 B per entry, 8 B per row
+    pointer, x read, y written and the mass scaling read: 3 vectors), at the
+    one-thread bandwidth.  The rod's rules work from the plan (K not stored):
+    its limit is the same work with K stored.  The certified rule
+    (factorizations) has no limit derived: its flop count is not in the CSV."""
+    n, nnz, s = f(row, "dofs"), f(row, "nnz_K"), f(row, "seconds_median")
+    if not (n and nnz):
+        return "none", None, s
+    if row["rule"] == "gershgorin":
+        return "bytes", (8.0 * nnz + 8.0 * (n + 1) + 8.0 * n) / bw[1], s
+    if row["rule"] == "power":
+        return "bytes", POWER_ITERATIONS * full_matvec_bytes(n, nnz) / bw[1], s
+    return "none", None, s
+
+
+POWER_ITERATIONS = 300  # lib/time/mfs_solver.c, mfs_solver2d.c
+
+
 def none(row, bw):
     for k in ("seconds", "total_s", "wall_s", "seconds_median", "eval_s"):
         if f(row, k) is not None:
@@ -144,6 +198,7 @@ RULES = {
     "bench_static": static,
     "bench_solver": solver,
     "bench_check": check,
+    "bench_step": step,
 }
 OWN = ("bench_lambda", "bench_assembly", "bench_bandwidth")
 
@@ -191,6 +246,12 @@ def main():
             rule = lambda r, b: check(r, b, a.gflops * 1e9)  # noqa: E731
         if name == "bench_dispersion":
             rule = lambda r, b: dispersion(r, b, a.gflops * 1e9)  # noqa: E731
+        if name in ("bench_map", "bench_map_command"):
+            rule = lambda r, b: dispersion_map(r, b, a.gflops * 1e9)  # noqa: E731
+        if name == "bench_dispersion_numpy":
+            rule = lambda r, b: dispersion_numpy(r, b, a.gflops * 1e9)  # noqa: E731
+            if "numpy_fraction" not in cols:
+                cols.append("numpy_fraction")
         if name == "bench_table4":
             rule = lambda r, b: table4(r, b, a.gflops * 1e9)  # noqa: E731
             if "cd1_fraction" not in cols:

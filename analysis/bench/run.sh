@@ -43,7 +43,7 @@ GBS1=$(lim 1 gbs) GBS2=$(lim 2 gbs) GF1=$(lim 1 gflops)
 echo "run.sh: limits: $GBS1 GB/s (1 thread), $GBS2 GB/s (2 threads), $GF1 Gflop/s (dgemm, 1 thread)" >&2
 export MFS_BENCH_GBS=$GBS1 MFS_BENCH_GBS_1=$GBS1 MFS_BENCH_GBS_2=$GBS2 MFS_BENCH_GFLOPS=$GF1
 
-[ "$LIMITS_ONLY" = 1 ] && SKIP=" lambda eigs assembly solver map dispersion static check blas mpi "
+[ "$LIMITS_ONLY" = 1 ] && SKIP=" lambda eigs assembly solver map step dispersion static check blas mpi "
 if want lambda; then
   say "lambda (mfstab lambda_max, SciPy eigsh, certified step)"
   if [ "$QUICK" = 1 ]; then REPS=1 CERTIFY=0 OUT=$OUT/bench_lambda.csv bash "$HERE/bench_lambda.sh" "$BUILD" 100
@@ -64,10 +64,16 @@ if want solver; then
   if [ "$QUICK" = 1 ]; then "$B/bench_solver" 20000 100 -o "$OUT/bench_solver.csv"
   else "$B/bench_solver" 100000 400 -o "$OUT/bench_solver.csv"; fi
 fi
-if want map; then
+if want map; then # bench_map, then the command itself (bench_map_command.csv)
   say map
-  if [ "$QUICK" = 1 ]; then "$B/bench_map" --repeat 1 -o "$OUT/bench_map.csv" 16
-  else "$B/bench_map" --repeat 3 -o "$OUT/bench_map.csv" 60; fi
+  ABS_BUILD=$(cd "$BUILD" && pwd) ABS_OUT=$(cd "$OUT" && pwd)
+  if [ "$QUICK" = 1 ]; then BUILD=$ABS_BUILD OUTDIR=$ABS_OUT REPEATS=1 bash "$HERE/run_bench_map.sh" 16
+  else BUILD=$ABS_BUILD OUTDIR=$ABS_OUT REPEATS=3 bash "$HERE/run_bench_map.sh" 60; fi
+fi
+if want step; then
+  say "step (the step rules: power, gershgorin, certified)"
+  if [ "$QUICK" = 1 ]; then "$B/bench_step" --reps 1 --certified-max 0 -o "$OUT/bench_step.csv" 2000
+  else "$B/bench_step" -o "$OUT/bench_step.csv" 10000 100000; fi
 fi
 if want dispersion; then
   say dispersion

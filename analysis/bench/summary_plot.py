@@ -3,7 +3,10 @@
 limit_kind and fraction columns (limits.py), the fraction of its physical
 limit each kind of row reaches (median over the rows of that kind, the bar;
 min and max, the whisker), on a log scale; bytes-limited rows blue,
-flop-limited orange.  Rows without a limit (limit_kind none) are not shown.
+flop-limited orange.  Rows without a limit (limit_kind none) and the
+min/median/max summary rows of a CSV with runs are not shown; a second
+fraction of the same rows (EXTRA: numpy_fraction, cd1_fraction) is a bar
+of its own, its label suffixed.
 
     summary_plot.py DIR OUT.png
 """
@@ -18,7 +21,11 @@ import matplotlib
 matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
 
-LABEL_COLS = ("tool", "phase", "case", "method", "kernel", "scheme", "blas", "frame", "family")
+LABEL_COLS = ("tool", "phase", "case", "method", "kernel", "scheme", "blas", "frame", "family",
+              "comparison", "command", "scene", "rule")
+# a second fraction of the same rows (limits.py): its own bar, labelled by the suffix
+EXTRA = {"dispersion_numpy": (("numpy_fraction", "numpy"),),
+         "table4": (("cd1_fraction", "cd1"),)}
 
 
 def groups(path):
@@ -27,20 +34,21 @@ def groups(path):
         rows = list(csv.DictReader(l for l in fh if not l.startswith("#")))
     out = {}
     for r in rows:
-        kind, fr = r.get("limit_kind", ""), r.get("fraction", "")
-        if kind not in ("bytes", "flops") or not fr:
-            continue
-        try:
-            v = float(fr)
-        except ValueError:
-            continue
+        kind = r.get("limit_kind", "")
+        if kind not in ("bytes", "flops") or r.get("run") in ("min", "median", "max"):
+            continue  # no limit, or a summary row of the runs
         parts = [r[c] for c in LABEL_COLS if r.get(c)]
         if r.get("threads"):
             parts.append(f"{r['threads']}t")
         if r.get("ranks"):
             parts.append(f"{r['ranks']}r")
-        key = (f"{name}: " + " ".join(parts)).strip(), kind
-        out.setdefault(key, []).append(v)
+        label = (f"{name}: " + " ".join(parts)).strip()
+        for col, suffix in (("fraction", ""),) + EXTRA.get(name, ()):
+            try:
+                v = float(r.get(col, ""))
+            except ValueError:
+                continue
+            out.setdefault((label + (f" ({suffix})" if suffix else ""), kind), []).append(v)
     return out
 
 
