@@ -10,6 +10,7 @@
 #include <time.h>
 
 #include "mfs_cholmod.h"
+#include "mfs_huge.h"
 
 #include "mfs_lapack.h"
 #include "mfs_omp.h"
@@ -313,6 +314,7 @@ static int arpack_run(arpack_job *j, mfs_eig_info *info)
   int *select = mfs_malloc((size_t)ncv * sizeof *select);
   if (!resid || !v || !workd || !workl || !dd || !select)
     goto done;
+  mfs_advise_huge(v, (size_t)n * (size_t)ncv * sizeof *v); /* the basis every step streams */
   memcpy(resid, j->start, (size_t)n * sizeof *resid);
   iparam[0] = 1; /* exact shifts */
   iparam[2] = j->maxiter;

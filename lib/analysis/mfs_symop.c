@@ -1,13 +1,9 @@
-/* madvise (Linux): the C library declares it for _DEFAULT_SOURCE */
-#define _DEFAULT_SOURCE 1
 #include "mfs_symop.h"
 #include "mfs_alloc.h"
 
-#include <stdint.h>
 #include <string.h>
-#ifdef __linux__
-#include <sys/mman.h>
-#endif
+
+#include "mfs_huge.h"
 
 #include "mfs_omp.h"
 #include "mfs_status.h"
@@ -19,30 +15,6 @@
 #define SYMOP_V2D 1
 typedef double v2d __attribute__((vector_size(16)));
 #endif
-
-/* Transparent huge pages for a large block not touched yet (Linux:
- * madvise MADV_HUGEPAGE on its whole pages, where the system's setting is
- * "madvise" or "always"; advice only: nothing happens elsewhere or if the
- * kernel declines).  The stored operator is written once and then streamed
- * by every product: with 4 KB pages its first touch took a page fault per
- * page (the 2 x 2 fill at 2 10^5 unknowns, 58 MB: 68-110 ms with them,
- * 38-54 ms with 2 MB pages) and the products were slower by their TLB
- * misses (4.9-9.3 ms per product against 4.7-5.2 ms; bench_lambda 316,
- * one thread, load 4-5, alternating). */
-static void advise_huge(void *p, size_t bytes)
-{
-#if defined(__linux__) && defined(MADV_HUGEPAGE)
-  const uintptr_t page = 4096, huge = (uintptr_t)1 << 21;
-  if (!p || bytes < 4 * huge)
-    return;
-  uintptr_t a = ((uintptr_t)p + page - 1) & ~(page - 1), e = ((uintptr_t)p + bytes) & ~(page - 1);
-  if (e > a)
-    (void)madvise((void *)a, e - a, MADV_HUGEPAGE);
-#else
-  (void)p;
-  (void)bytes;
-#endif
-}
 
 void mfs_symop_free(mfs_symop *A)
 {
@@ -120,7 +92,7 @@ static int op_finish(mfs_symop *A, const int *idx)
   A->run = mfs_malloc((nr ? nr : 1) * sizeof *A->run);
   if (!A->z || !A->rptr || !A->run)
     return MFS_ENOMEM;
-  advise_huge(A->run, nr * sizeof *A->run);
+  mfs_advise_huge(A->run, nr * sizeof *A->run);
   size_t q = 0;
   A->rptr[0] = 0;
   for (int t = 0; t < NB; t++)
@@ -199,7 +171,7 @@ static int op_build_pairs(const mfs_csr *K, const double *s, const double *restr
   int st = MFS_ENOMEM;
   if (!A->diag || !idx || !A->val)
     goto done;
-  advise_huge(A->val, 4 * nbl * sizeof *A->val);
+  mfs_advise_huge(A->val, 4 * nbl * sizeof *A->val);
   MFS_OMP("omp parallel for schedule(static) num_threads(nt) if (par) reduction(|:bad)")
   for (long bi = 0; bi < (long)nb; bi++) {
     size_t r0 = kp[2 * bi], r1 = kp[2 * bi + 1], len = r1 - r0, p = A->ptr[bi];
@@ -286,7 +258,7 @@ static int op_build(const mfs_csr *K, const double *s, int *work, mfs_symop *A)
   A->val = mfs_malloc((nbl ? nbl * (size_t)bb : 1) * sizeof *A->val);
   if (!idx || !A->val)
     goto done;
-  advise_huge(A->val, nbl * (size_t)bb * sizeof *A->val);
+  mfs_advise_huge(A->val, nbl * (size_t)bb * sizeof *A->val);
   memset(A->val, 0, (nbl ? nbl * (size_t)bb : 1) * sizeof *A->val);
   /* the columns of each block row, sorted (insertion: rows are short),
    * then the values through work[bj] = position of block bj in this row */

@@ -1,7 +1,14 @@
+/* madvise (Linux): the C library declares it for _DEFAULT_SOURCE */
+#define _DEFAULT_SOURCE 1
 #include "mfs_alloc.h"
+#include "mfs_huge.h"
 
 #include <stdlib.h>
+#include <stdint.h>
 #include <string.h>
+#ifdef __linux__
+#include <sys/mman.h>
+#endif
 
 #include <suitesparse/SuiteSparse_config.h>
 
@@ -88,4 +95,19 @@ char *mfs_strdup(const char *s)
 void mfs_free_libc(void *p)
 {
   free(p);
+}
+
+void mfs_advise_huge(void *p, size_t bytes)
+{
+#if defined(__linux__) && defined(MADV_HUGEPAGE)
+  const uintptr_t page = 4096, huge = (uintptr_t)1 << 21;
+  if (!p || bytes < 4 * huge)
+    return;
+  uintptr_t a = ((uintptr_t)p + page - 1) & ~(page - 1), e = ((uintptr_t)p + bytes) & ~(page - 1);
+  if (e > a)
+    (void)madvise((void *)a, e - a, MADV_HUGEPAGE);
+#else
+  (void)p;
+  (void)bytes;
+#endif
 }
