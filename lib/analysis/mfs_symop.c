@@ -108,6 +108,19 @@ static int op_finish(mfs_symop *A, const int *idx)
   return MFS_OK;
 }
 
+/* A builder's end: on success its block columns idx go to the caller (who
+ * finishes A from them and frees them), else A and idx are freed. */
+static int built(int st, mfs_symop *A, int *idx, int **idxp)
+{
+  if (st == MFS_OK) {
+    *idxp = idx;
+    return MFS_OK;
+  }
+  mfs_free(idx);
+  mfs_symop_free(A);
+  return st;
+}
+
 /* The 2 x 2 build for K made of full blocks in sorted rows (plane strain as
  * mfs_assemble writes it): rows 2i and 2i+1 have the same columns,
  * ascending, in pairs (2j, 2j+1).  The first pass checks it and counts each
@@ -120,7 +133,7 @@ static int op_finish(mfs_symop *A, const int *idx)
  * slower: the runs of half rows defeat the prefetchers; the copy is one
  * stream.) */
 static int op_build_pairs(const mfs_csr *K, const double *s, const double *restrict x0,
-                          double *restrict y0, int nt, int par, mfs_symop *A)
+                          double *restrict y0, int nt, int par, mfs_symop *A, int **idxp)
 {
   size_t n = K->nrow, nb = n / 2;
   const size_t *kp = K->ptr;
@@ -210,20 +223,13 @@ static int op_build_pairs(const mfs_csr *K, const double *s, const double *restr
       y0[2 * bi + 1] = y1s;
     }
   }
-  if (bad) {
-    st = MFS_ENOTSUP;
-    goto done;
-  }
-  st = op_finish(A, idx);
+  st = bad ? MFS_ENOTSUP : MFS_OK;
 done:
-  mfs_free(idx);
-  if (st != MFS_OK)
-    mfs_symop_free(A);
-  return st;
+  return built(st, A, idx, idxp);
 }
 
 /* The general build from K and s; work: n ints of scratch. */
-static int op_build(const mfs_csr *K, const double *s, int *work, mfs_symop *A)
+static int op_build(const mfs_csr *K, const double *s, int *work, mfs_symop *A, int **idxp)
 {
   size_t n = K->nrow;
   memset(A, 0, sizeof *A);
@@ -294,28 +300,31 @@ static int op_build(const mfs_csr *K, const double *s, int *work, mfs_symop *A)
       }
     }
   }
-  st = op_finish(A, idx);
+  st = MFS_OK;
 done:
-  mfs_free(idx);
-  if (st != MFS_OK)
-    mfs_symop_free(A);
-  return st;
+  return built(st, A, idx, idxp);
 }
 
 int mfs_symop_build(const mfs_csr *K, const double *s, const double *x0, double *y0, int nt,
                     int par, mfs_symop *A, int *have_y)
 {
+  int *idx = NULL;
   *have_y = 0;
-  int st = op_build_pairs(K, s, x0, y0, nt, par, A);
-  if (st != MFS_ENOTSUP) {
-    *have_y = st == MFS_OK && x0 != NULL;
-    return st;
+  int st = op_build_pairs(K, s, x0, y0, nt, par, A, &idx);
+  if (st == MFS_OK) {
+    *have_y = x0 != NULL;
+  } else if (st == MFS_ENOTSUP) {
+    int *work = mfs_malloc((K->nrow ? K->nrow : 1) * sizeof *work);
+    st = work ? op_build(K, s, work, A, &idx) : MFS_ENOMEM;
+    mfs_free(work);
   }
-  int *work = mfs_malloc((K->nrow ? K->nrow : 1) * sizeof *work);
-  if (!work)
-    return MFS_ENOMEM;
-  st = op_build(K, s, work, A);
-  mfs_free(work);
+  if (st == MFS_OK)
+    st = op_finish(A, idx);
+  mfs_free(idx);
+  if (st != MFS_OK) {
+    mfs_symop_free(A);
+    *have_y = 0;
+  }
   return st;
 }
 
