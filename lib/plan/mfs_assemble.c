@@ -321,7 +321,8 @@ static inline void row_point(const mfs_row *r, size_t Q, mfs_point *pt)
   /* field by field: an initializer would clear the padding (a memset) */
   pt->nn = r->tptr[Q + 1] - e0;
   pt->idx = r->tidx + e0;
-  pt->phi = r->cslot ? r->ctab + (size_t)r->cslot[Q] * (size_t)r->nc : r->ttab + e0 * (size_t)r->nc;
+  pt->phi = r->cslot ? r->ctab + (size_t)r->cslot[Q - r->cq0] * (size_t)r->nc
+                     : r->ttab + e0 * (size_t)r->nc;
   pt->ncomp = r->nc;
   pt->w = r->qw[Q];
   pt->x = r->qx + Q * (size_t)r->dim;
@@ -514,7 +515,8 @@ void mfs_row_sort(mfs_row *r)
 typedef struct {
   mfs_row r;
   mfs_eval ev;     /* streaming: the plan's evaluator */
-  int *slot;       /* nq: entry of each point's row in ctab, or -1 */
+  int *slot;       /* the widest block's window of points: entry of each point's row in
+                      ctab (slot[Q - q0], q0 the block's smallest point), or -1 */
   int *need;       /* the points of the block */
   int *kept;       /* a point's neighbours (equal to its list) */
   double *ctab;    /* the block's table rows */
@@ -552,20 +554,43 @@ static void sweep_ws_free(sweep_ws *w)
 
 /* Rows per block: without a table the points of a block's boundary are
  * evaluated by both neighbouring blocks, so blocks are large (a few percent
- * of them on a lattice of 10^6 particles) but still several per thread. */
+ * of them on a lattice of 10^6 particles) but still several per thread; each
+ * thread holds the table rows of its block, so with nt threads a block has
+ * at most 65536 / nt rows: the threads' tables together no larger than one
+ * thread's (the sweep's memory does not grow with the threads). */
 static size_t sweep_block(size_t n, int table, int nt)
 {
   if (table)
     return 2048;
-  size_t b = n / (4 * (size_t)nt);
-  return b < 1024 ? 1024 : b > 65536 ? 65536 : b;
+  size_t b = n / (4 * (size_t)nt), hi = 65536 / (size_t)nt;
+  hi = hi < 1024 ? 1024 : hi;
+  return b < 1024 ? 1024 : b > hi ? hi : b;
+}
+
+/* The window of the points the rows of [r0, r1) need: the smallest, *q0,
+ * and their span (0: none); the particles' lists of points are sorted. */
+static size_t block_window(const mfs_plan *pl, size_t r0, size_t r1, size_t *q0)
+{
+  size_t lo = SIZE_MAX, hi = 0;
+  for (size_t I = r0; I < r1; I++) {
+    size_t nq;
+    const int *Q;
+    mfs_plan_particle_points(pl, I, &nq, &Q);
+    if (nq) {
+      lo = (size_t)Q[0] < lo ? (size_t)Q[0] : lo;
+      hi = (size_t)Q[nq - 1] > hi ? (size_t)Q[nq - 1] : hi;
+    }
+  }
+  *q0 = lo == SIZE_MAX ? 0 : lo;
+  return lo == SIZE_MAX ? 0 : hi - lo + 1;
 }
 
 /* The points the rows of [r0, r1) need, counted (npts) with their entries
- * (nent); with slot/need, also listed in need with their entries in slot.
- * slot is left reset when need is NULL. */
-static void block_points(const mfs_plan *pl, size_t r0, size_t r1, int *slot, int *need,
-                         size_t *npts, size_t *nent)
+ * (nent); with slot/need, also listed in need with their entries in slot
+ * (slot[Q - q0], q0 the block's window's start, block_window).  slot is left
+ * reset when need is NULL. */
+static void block_points(const mfs_plan *pl, size_t r0, size_t r1, size_t q0, int *slot,
+                         int *need, size_t *npts, size_t *nent)
 {
   const size_t *tptr;
   const int *tidx;
@@ -577,8 +602,8 @@ static void block_points(const mfs_plan *pl, size_t r0, size_t r1, int *slot, in
     const int *Q;
     mfs_plan_particle_points(pl, I, &nq, &Q);
     for (size_t t = 0; t < nq; t++)
-      if (slot[Q[t]] < 0) {
-        slot[Q[t]] = (int)ne;
+      if (slot[Q[t] - q0] < 0) {
+        slot[Q[t] - q0] = (int)ne;
         ne += tptr[Q[t] + 1] - tptr[Q[t]];
         if (need)
           need[np] = Q[t];
@@ -591,7 +616,7 @@ static void block_points(const mfs_plan *pl, size_t r0, size_t r1, int *slot, in
       const int *Q;
       mfs_plan_particle_points(pl, I, &nq, &Q);
       for (size_t t = 0; t < nq; t++)
-        slot[Q[t]] = -1;
+        slot[Q[t] - q0] = -1;
     }
   *npts = np;
   *nent = ne;
@@ -604,13 +629,15 @@ static void sweep_block_run(const sweep_job *j, sweep_ws *w, size_t r0, size_t r
                             mfs_status *st_row)
 {
   const mfs_plan *pl = j->pl;
-  size_t np = 0, ne = 0;
+  size_t np = 0, ne = 0, q0 = 0;
   if (stream) {
-    block_points(pl, r0, r1, w->slot, w->need, &np, &ne);
+    block_window(pl, r0, r1, &q0);
+    w->r.cq0 = q0;
+    block_points(pl, r0, r1, q0, w->slot, w->need, &np, &ne);
     for (size_t k = 0; k < np; k++) {
       size_t Q = (size_t)w->need[k];
-      mfs_status s = mfs_plan_eval_point(pl, &w->ev, Q, w->kept,
-                                         w->ctab + (size_t)w->slot[Q] * (size_t)w->r.nc, NULL);
+      mfs_status s = mfs_plan_eval_point(
+          pl, &w->ev, Q, w->kept, w->ctab + (size_t)w->slot[Q - q0] * (size_t)w->r.nc, NULL);
       if (s != MFS_OK && Q < *bad_q) {
         *bad_q = Q;
         *st_q = s;
@@ -643,7 +670,7 @@ static void sweep_block_run(const sweep_job *j, sweep_ws *w, size_t r0, size_t r
     }
   if (stream)
     for (size_t k = 0; k < np; k++)
-      w->slot[w->need[k]] = -1;
+      w->slot[w->need[k] - q0] = -1;
 }
 
 /* sweep_block_run, its failures merged into the sweep's (the smallest). */
@@ -686,7 +713,13 @@ static mfs_status sweep_run(const sweep_job *j, size_t *bad)
   size_t *bnp = NULL, *bne = NULL;
   if (!ws)
     return MFS_ENOMEM;
-  size_t max_np = 0, max_ne = 0;
+  size_t max_np = 0, max_ne = 0, span = 1; /* the widest block's window of points */
+  if (stream)
+#pragma omp parallel for reduction(max : span) schedule(static) num_threads(nt)
+    for (size_t b = 0; b < nb; b++) {
+      size_t q0, r1 = (b + 1) * B < n ? (b + 1) * B : n, w = block_window(pl, b * B, r1, &q0);
+      span = w > span ? w : span;
+    }
   for (int t = 0; t < nt; t++) { /* every workspace before the parallel part */
     sweep_ws *w = ws + t;
     if ((st = row_init_cap(&w->r, pl, j->f, cap, table)) != MFS_OK)
@@ -702,12 +735,12 @@ static mfs_status sweep_run(const sweep_job *j, size_t *bad)
       if ((st = mfs_plan_evaluator(pl, order, &w->ev)) != MFS_OK)
         goto done;
       st = MFS_ENOMEM;
-      w->slot = mfs_malloc((nq ? nq : 1) * sizeof *w->slot);
+      w->slot = mfs_malloc(span * sizeof *w->slot);
       w->kept = mfs_malloc(mfs_plan_max_neighbours(pl) * sizeof *w->kept);
       if (!w->slot || !w->kept)
         goto done;
-      for (size_t Q = 0; Q < nq; Q++)
-        w->slot[Q] = -1;
+      for (size_t k = 0; k < span; k++)
+        w->slot[k] = -1;
     }
   }
   if (stream) { /* the largest block, to size the chunks */
@@ -717,8 +750,9 @@ static mfs_status sweep_run(const sweep_job *j, size_t *bad)
       goto done;
 #pragma omp parallel for schedule(dynamic, 1) num_threads(nt)
     for (size_t b = 0; b < nb; b++) {
-      size_t r1 = (b + 1) * B < n ? (b + 1) * B : n;
-      block_points(pl, b * B, r1, ws[mfs_thread_id()].slot, NULL, bnp + b, bne + b);
+      size_t q0, r1 = (b + 1) * B < n ? (b + 1) * B : n;
+      block_window(pl, b * B, r1, &q0);
+      block_points(pl, b * B, r1, q0, ws[mfs_thread_id()].slot, NULL, bnp + b, bne + b);
     }
     for (size_t b = 0; b < nb; b++) {
       max_np = bnp[b] > max_np ? bnp[b] : max_np;
@@ -1128,7 +1162,8 @@ typedef struct {
   int *srt;       /* per thread: a row's free columns, sorted (cap each) */
   uint64_t *bits; /* per thread: PATTERN_WORDS */
   size_t cap;
-  size_t *rlen;   /* per particle: the free columns of its row */
+  size_t *rlen;   /* the free columns of the row of free particle k at rlen[k ndof] (K's
+                     ptr + 1: made the row pointers after the sweep) */
   double *acc;    /* scalar_2d, per thread: PATTERN_WORDS * 64 columns, zero */
   int scalar_2d;  /* the forms: the stiffness of a 2D scalar model alone (fuse_scalar_2d) */
   const mfs_forms *f;
@@ -1225,7 +1260,7 @@ static mfs_status fuse_row(void *vc, const mfs_row *r, size_t I, int thread)
   double *kv = b->kv ? b->kv + b->len : NULL, *mv = b->mv ? b->mv + b->len : NULL;
   const size_t len = row_sorted_free(c->pl, I, r, c->prow, c->bits + (size_t)thread * PATTERN_WORDS,
                                      srt, nd, ix, kv, mv);
-  c->rlen[I] = len;
+  c->rlen[rp * nd] = len;
   if (nd > 1)
     for (size_t a = 0, e = 0; a < nd; a++)
       for (size_t s = 0; s < len; s++) {
@@ -1300,7 +1335,7 @@ static mfs_status fuse_scalar_2d(fuse_ctx *c, mfs_row *r, size_t I, int thread)
       }
       acc[d] = 0.0;
     }
-  c->rlen[I] = k;
+  c->rlen[c->prow[I]] = k;
   b->len += k;
   if (c->m) /* sph: the particle masses rho V_I (eq. 51) */
     c->m[c->prow[I]] = c->pu ? lump : c->density * (c->vol ? c->vol[I] : c->node_vol);
@@ -1420,20 +1455,23 @@ mfs_status mfs_assemble(const mfs_plan *pl, const mfs_material *mat, const unsig
   mfs_status st = MFS_ENOMEM;
   mfs_csr *A = NULL, *C = NULL;
   int *prow = mfs_malloc((n ? n : 1) * sizeof *prow);
+  size_t nr = 0;
   fuse_ctx c = {.cap = cap, .ndof = nd, .pu = pu, .nt = nt, .density = mat->density,
                 .node_vol = d->node_volume_mass ? mfs_particles_node_volume(p) : 0.0,
                 .vol = d->node_volume_mass ? NULL : p->vol, .m = m, .pl = pl, .prow = prow};
-  c.rlen = mfs_calloc(n ? n : 1, sizeof *c.rlen);
+  if ((A = mfs_calloc(1, sizeof *A)))
+    A->ptr = mfs_calloc(n * (size_t)nd + 1, sizeof *A->ptr);
+  c.rlen = A ? A->ptr + 1 : NULL;
   c.srt = mfs_malloc((size_t)nt * cap * sizeof *c.srt);
   c.bits = mfs_malloc((size_t)nt * PATTERN_WORDS * sizeof *c.bits);
   c.f = &f;
   c.scalar_2d = p->dim == 2 && nd == 1 && K && !M;
   if (c.scalar_2d)
     c.acc = mfs_calloc((size_t)nt * PATTERN_WORDS * 64, sizeof *c.acc);
-  if (!prow || !c.rlen || !c.srt || !c.bits || (c.scalar_2d && !c.acc))
+  if (!prow || !A || !A->ptr || !c.srt || !c.bits || (c.scalar_2d && !c.acc))
     goto done;
   c.B = B;
-  size_t nf = free_rows(n, fixed, prow, NULL);
+  nr = free_rows(n, fixed, prow, NULL) * (size_t)nd;
   if (nt > 1 && (st = block_counts(pl, prow, B, nd2, nt, bsum, &total)) != MFS_OK)
     goto done;
   st = MFS_ENOMEM;
@@ -1477,15 +1515,14 @@ mfs_status mfs_assemble(const mfs_plan *pl, const mfs_material *mat, const unsig
       c.out.len += l;
     }
   st = MFS_ENOMEM;
-  const size_t nr = nf * (size_t)nd;
-  if (!(A = mfs_calloc(1, sizeof *A)) || !(A->ptr = mfs_malloc((nr + 1) * sizeof *A->ptr)))
-    goto done;
   A->nrow = A->ncol = nr;
   A->ptr[0] = 0;
-  for (size_t I = 0, r = 0; I < n; I++)
-    if (prow[I] >= 0)
-      for (int a = 0; a < nd; a++, r++)
-        A->ptr[r + 1] = A->ptr[r] + c.rlen[I] * (size_t)nd;
+  for (size_t r = 0; r < nr; r += (size_t)nd) { /* a row's length is at ptr[r + 1] */
+    size_t len = A->ptr[r + 1] * (size_t)nd;
+    for (int a = 0; a < nd; a++)
+      A->ptr[r + (size_t)a + 1] = A->ptr[r + (size_t)a] + len;
+  }
+  A->ptr = shrink(A->ptr, (nr + 1) * sizeof *A->ptr);
   const size_t nnz = c.out.len;
   if (K && M) { /* M: a copy of the pattern */
     if (!(C = mfs_calloc(1, sizeof *C)) || !(C->ptr = mfs_malloc((nr + 1) * sizeof *C->ptr)) ||
@@ -1524,7 +1561,6 @@ done:
   mfs_free(bsum);
   mfs_free(c.srt);
   mfs_free(c.bits);
-  mfs_free(c.rlen);
   mfs_free(c.acc);
   mfs_free(prow);
   return st;

@@ -81,7 +81,8 @@ typedef struct {
   int ndof;
   size_t cap;     /* columns a row can have; the accumulators hold one more (a discard slot) */
   const double *ctab; /* a chunk of the table (mfs_row_sweep without a plan table), */
-  const int *cslot;   /* the entry of each point's row in it */
+  const int *cslot;   /* the entry of each point's row in it, */
+  size_t cq0;         /* by point number less this (the block's smallest point) */
   int *mark;      /* particles: position in the row, or -1 */
   int *pcol;      /* a point's neighbours: their positions in the row */
   const size_t *tptr; /* the plan's table (mfs_plan_table) and points */
