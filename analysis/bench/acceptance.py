@@ -150,7 +150,7 @@ def t_assembly(col, phase="total"):
         rs = [r for r in rows(d, "bench_assembly.csv") if r.get("phase") == phase and col in r]
         big = max((int(r["nodes"]) for r in rs), default=0)
         rs = [r for r in rs if int(r["nodes"]) == big and r.get("mode", "model") == "model"]
-        return [num(r[col]) for r in rs], [], \
+        return [num(r[col]) for r in rs], loads(rs, "load_1min"), \
             f"bench_assembly.csv mode=model phase={phase} nodes={big}, {col}"
     return f
 
