@@ -17,13 +17,19 @@
  *
  * Phases:
  *   lattice, quadrature     mfs_lattice_alloc, mfs_quad_alloc
- *   neighbour_search        mfs_plan_alloc: cell lists and the lists of the points (their
- *                           transpose is built by the assembly, mfs_plan_transpose)
+ *   neighbour_search        mfs_plan_alloc: cell lists and the lists of the points
  *   shape_tables            (table) mfs_plan_tabulate
+ *   transpose               mfs_plan_transpose: the particles' lists of points (what the
+ *                           first assembly would build; timed apart, the rows need it)
  *   assembly                mfs_assemble: K (its pattern and values) and the lumped mass in
  *                           one sweep over the rows (model: with the shape functions'
  *                           evaluation), each row's columns sorted and appended in order
- *   total                   the sum of the phases above
+ *   rows_only               (model) the same rows without the CSR (rows_only below): not in
+ *                           the total; error: the rows whose sum differs from K's (0: the
+ *                           same bits; any other count fails the run)
+ *   total                   the sum of the phases above but rows_only; ratio (model): the
+ *                           CSR build's share, (CPU of assembly - CPU of rows_only) / CPU of
+ *                           (transpose + assembly), CPU = user + sys of every thread
  *   separate_pattern        after the total (not in it): the path of the solvers that reuse
  *   separate_fill           a pattern, mfs_assemble_pattern then mfs_assemble_fill into it;
  *                           error: the entries (ptr, idx; values and masses) that differ
@@ -43,7 +49,8 @@
  * seconds is wall-clock time; user_s and sys_s the CPU time of the phase (sys_s is
  * mostly page faults on first touch of new memory); threads the OpenMP threads.
  * peak_rss_mb: the process's peak so far; nnz_K the entries of K; bytes_per_nnz the
- * peak (bytes) / nnz_K on the total row.
+ * peak (bytes) / nnz_K on the total row (the peak when the assembly returned, before
+ * rows_only).  load_1min: the 1-minute load average (/proc/loadavg) when the row was written.
  * limit_s: the bytes the phase must write (lists 4 B, table 24 B per list entry; K's
  * idx 4 B and val 8 B per entry, 8 B per row) at the measured memory bandwidth
  * (bench_common.h; bandwidth_gbs column), the physical lower bound of its time;
@@ -289,11 +296,15 @@ static double k_ones(const mfs_csr *K)
  * cleared again); the window is then read once in column order (the row's
  * sum, sum_J K_IJ in that order, into sum[i]) and cleared.  No columns are
  * collected, no counts, no idx, val or ptr written, no blocks moved, no
- * pages of K touched.  Returns the rows whose sum is not bit for bit that
- * of K's row in its order (or whose lumped mass is not m's), or SIZE_MAX if
- * the workspace cannot be had. */
+ * pages of K touched.  With vals (phase values_only: the numeric fill
+ * alone), the values are also written as they are read, at K's row offsets
+ * (a fresh array of nnz_K doubles: the values' pages first touched here as
+ * a fill into a pattern touches them), and compared with K's bit for bit.
+ * Returns the rows whose sum is not bit for bit that of K's row in its order
+ * (or whose lumped mass is not m's, or with vals whose values or length are
+ * not K's), or SIZE_MAX if the workspace cannot be had. */
 static size_t rows_only(const mfs_plan *pl, double c0, double rho, const mfs_csr *K,
-                        const double *m, double *sum)
+                        const double *m, double *sum, double *vals)
 {
   const size_t n = mfs_plan_particles(pl)->n;
   const size_t *tptr;
@@ -417,13 +428,26 @@ static size_t rows_only(const mfs_plan *pl, double c0, double rho, const mfs_csr
           bt[d >> 6] |= (uint64_t)1 << (d & 63);
         }
       }
-      for (size_t u = 0; u < nw; u++) /* read once and cleared */
-        for (uint64_t v = bt[u]; v; v &= v - 1) {
-          unsigned d = (unsigned)(u << 6) + (unsigned)__builtin_ctzll(v);
-          s += a[d];
-          a[d] = 0.0;
-        }
+      size_t o = K->ptr[i];
+      if (vals)
+        for (size_t u = 0; u < nw; u++) /* read once in order, written, cleared */
+          for (uint64_t v = bt[u]; v; v &= v - 1) {
+            unsigned d = (unsigned)(u << 6) + (unsigned)__builtin_ctzll(v);
+            s += a[d];
+            vals[o++] = a[d];
+            a[d] = 0.0;
+          }
+      else
+        for (size_t u = 0; u < nw; u++) /* read once in order and cleared */
+          for (uint64_t v = bt[u]; v; v &= v - 1) {
+            unsigned d = (unsigned)(u << 6) + (unsigned)__builtin_ctzll(v);
+            s += a[d];
+            a[d] = 0.0;
+          }
       sum[i] = s;
+      if (vals && (o != K->ptr[i + 1] ||
+                   memcmp(vals + K->ptr[i], K->val + K->ptr[i], (o - K->ptr[i]) * sizeof *vals)))
+        sum[i] = NAN;
       if (lump != m[i])
         sum[i] = NAN;
     }
@@ -587,29 +611,36 @@ static int bench(FILE *f, int n_side, int rep, bench_mode mode, int checks, doub
    * CSR), over the assembly's (the transpose and mfs_assemble) */
   double share = -1.0;
   if (mode == MODE_MODEL) {
-    double *sum = malloc(p->n * sizeof *sum);
-    st = MFS_ENOMEM;
-    what = "rows_only";
-    if (!sum)
-      goto done;
-    t0 = now();
-    size_t nbad = rows_only(pl, mat.modulus, mat.density, K, m, sum);
-    stamp t_rows = since(t0);
-    free(sum);
-    if (nbad == SIZE_MAX)
-      goto done;
-    row(&r, "rows_only", t_rows, (double)nbad, -1.0, 8.0 * (double)p->n);
-    st = MFS_EINVAL;
-    if (nbad) {
-      fprintf(stderr, "bench_assembly: n = %d: %zu rows of rows_only differ from K's\n", n_side,
-              nbad);
-      goto done;
-    }
     /* CPU time (user + sys, every thread's): on a shared machine the wall
      * time of two passes run one after the other is not comparable */
-    double c_asm = t_asm.user + t_asm.sys, c_rows = t_rows.user + t_rows.sys;
-    share = (c_asm - c_rows) / (t_tr.user + t_tr.sys + c_asm);
-    share = share < 0.0 ? 0.0 : share;
+    const double c_asm = t_asm.user + t_asm.sys, c_all = t_tr.user + t_tr.sys + c_asm;
+    for (int fill = 0; fill < 2; fill++) {
+      double *sum = malloc(p->n * sizeof *sum), *vals = NULL;
+      st = MFS_ENOMEM;
+      what = fill ? "values_only" : "rows_only";
+      if (!sum || (fill && !(vals = malloc((r.nnz ? r.nnz : 1) * sizeof *vals)))) {
+        free(sum);
+        goto done;
+      }
+      t0 = now();
+      size_t nbad = rows_only(pl, mat.modulus, mat.density, K, m, sum, vals);
+      stamp t_rows = since(t0);
+      free(sum);
+      free(vals);
+      if (nbad == SIZE_MAX)
+        goto done;
+      double c_rows = t_rows.user + t_rows.sys, sh = (c_asm - c_rows) / c_all;
+      sh = sh < 0.0 ? 0.0 : sh;
+      row(&r, what, t_rows, (double)nbad, sh,
+          fill ? 8.0 * (double)(r.nnz + p->n) : 8.0 * (double)p->n);
+      st = MFS_EINVAL;
+      if (nbad) {
+        fprintf(stderr, "bench_assembly: n = %d: %zu rows of %s differ from K's\n", n_side, nbad,
+                what);
+        goto done;
+      }
+      share = sh; /* the total's: beyond the numeric fill */
+    }
   }
   r.peak = peak_total;
   row(&r, "total", t_total, -1.0, share,
