@@ -150,7 +150,7 @@ def t_assembly(col, phase="total"):
         rs = [r for r in rows(d, "bench_assembly.csv") if r.get("phase") == phase and col in r]
         big = max((int(r["nodes"]) for r in rs), default=0)
         rs = [r for r in rs if int(r["nodes"]) == big and r.get("mode", "model") == "model"]
-        return [num(r[col]) for r in rs], [], \
+        return [num(r[col]) for r in rs], loads(rs, "load_1min"), \
             f"bench_assembly.csv mode=model phase={phase} nodes={big}, {col}"
     return f
 
@@ -221,7 +221,8 @@ TARGETS = [
     (14, 5, "the run's step: Gershgorin time / 300-product power time", LE, 1.0, "ratio", t_step),
     (14, 6, "assembly at 10^6 nodes: peak memory per entry of K", LE, 24, "B/nnz",
      t_assembly("bytes_per_nnz")),
-    (14, 6, "assembly at 10^6 nodes: the CSR build's share of the assembly", LE, 0.2, "fraction",
+    (14, 6, "assembly at 10^6 nodes: the CSR build's share of the assembly (beyond the numeric "
+     "fill, CPU time)", LE, 0.2, "fraction",
      t_assembly("ratio")),
     (14, 7, "2 MPI ranks against one process: lambda_max", LE, 1e-10, "relative", t_mpi_error),
     (14, 8, "benchmark CSVs that state a physical limit", GE, 1.0, "share", t_limits),

@@ -17,13 +17,19 @@
  *
  * Phases:
  *   lattice, quadrature     mfs_lattice_alloc, mfs_quad_alloc
- *   neighbour_search        mfs_plan_alloc: cell lists and the lists of the points (their
- *                           transpose is built by the assembly, mfs_plan_transpose)
+ *   neighbour_search        mfs_plan_alloc: cell lists and the lists of the points
  *   shape_tables            (table) mfs_plan_tabulate
+ *   transpose               mfs_plan_transpose: the particles' lists of points (what the
+ *                           first assembly would build; timed apart, the rows need it)
  *   assembly                mfs_assemble: K (its pattern and values) and the lumped mass in
  *                           one sweep over the rows (model: with the shape functions'
  *                           evaluation), each row's columns sorted and appended in order
- *   total                   the sum of the phases above
+ *   rows_only               (model) the same rows without the CSR (rows_only below): not in
+ *                           the total; error: the rows whose sum differs from K's (0: the
+ *                           same bits; any other count fails the run)
+ *   total                   the sum of the phases above but rows_only; ratio (model): the
+ *                           CSR build's share, (CPU of assembly - CPU of rows_only) / CPU of
+ *                           (transpose + assembly), CPU = user + sys of every thread
  *   separate_pattern        after the total (not in it): the path of the solvers that reuse
  *   separate_fill           a pattern, mfs_assemble_pattern then mfs_assemble_fill into it;
  *                           error: the entries (ptr, idx; values and masses) that differ
@@ -43,7 +49,8 @@
  * seconds is wall-clock time; user_s and sys_s the CPU time of the phase (sys_s is
  * mostly page faults on first touch of new memory); threads the OpenMP threads.
  * peak_rss_mb: the process's peak so far; nnz_K the entries of K; bytes_per_nnz the
- * peak (bytes) / nnz_K on the total row.
+ * peak (bytes) / nnz_K on the total row (the peak when the assembly returned, before
+ * rows_only).  load_1min: the 1-minute load average (/proc/loadavg) when the row was written.
  * limit_s: the bytes the phase must write (lists 4 B, table 24 B per list entry; K's
  * idx 4 B and val 8 B per entry, 8 B per row) at the measured memory bandwidth
  * (bench_common.h; bandwidth_gbs column), the physical lower bound of its time;
@@ -54,6 +61,7 @@
  * --repeat R runs each size R times (column rep); --no-checks skips the reference tables. */
 #include <lapacke.h> /* includes <complex.h>: no variable may be called I */
 #include <math.h>
+#include <stdint.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -113,15 +121,30 @@ typedef struct {
   int n_side, rep;
   const char *mode;
   size_t nodes, nq, nnz;
-  double bps; /* bandwidth, bytes per second */
+  double bps;  /* bandwidth, bytes per second */
+  double peak; /* if > 0: the peak_rss_mb of the next row (then reset) */
 } row_ctx;
+
+/* The 1-minute load average (/proc/loadavg), or -1. */
+static double load_1min(void)
+{
+  double l = -1.0;
+  FILE *f = fopen("/proc/loadavg", "r");
+  if (f) {
+    if (fscanf(f, "%lf", &l) != 1)
+      l = -1.0;
+    fclose(f);
+  }
+  return l;
+}
 
 /* One CSV row; error and ratio are left empty when negative, limit_s and
  * fraction when bytes is 0. */
-static void row(const row_ctx *r, const char *phase, stamp t, double err, double ratio,
+static void row(row_ctx *r, const char *phase, stamp t, double err, double ratio,
                 double bytes)
 {
-  double peak = peak_rss_mb();
+  double peak = r->peak > 0.0 ? r->peak : peak_rss_mb(), load = load_1min();
+  r->peak = 0.0;
   fprintf(r->f, "%d,%zu,%zu,%d,%s,%d,%s,%.4f,%.4f,%.4f,%.1f,", r->n_side, r->nodes, r->nq, r->rep,
           r->mode, bench_threads(), phase, t.wall, t.user, t.sys, peak);
   if (r->nnz)
@@ -140,7 +163,10 @@ static void row(const row_ctx *r, const char *phase, stamp t, double err, double
     fprintf(r->f, "%.5f,%.4f", bytes / r->bps, bytes / r->bps / t.wall);
   else
     fputc(',', r->f);
-  fprintf(r->f, ",%.2f\n", r->bps * 1e-9);
+  fprintf(r->f, ",%.2f,", r->bps * 1e-9);
+  if (load >= 0.0)
+    fprintf(r->f, "%.2f", load);
+  fputc('\n', r->f);
   fflush(r->f);
 }
 
@@ -258,6 +284,195 @@ static double k_ones(const mfs_csr *K)
   return ymax / kmax;
 }
 
+/* The rows of the model mode without the CSR (phase rows_only): what
+ * mfs_assemble does to evaluate and accumulate, and nothing else.  The same
+ * blocks of rows as mfs_row_sweep's without a table (B = n / (4 threads) in
+ * 1024 .. 65536 / threads, lib/plan/mfs_assemble.c sweep_block), each thread
+ * evaluating its block's points (mfs_plan_eval_point, into a chunk of their
+ * table rows) and accumulating each row's terms, K_IJ += (w C) (grad phi_I .
+ * grad phi_J) and the lumped mass, into a dense window of the columns, with
+ * the arithmetic of the assembly's (fuse_scalar_2d), the columns met marked
+ * in a bitmap of the window (the least a dense window needs to be read and
+ * cleared again); the window is then read once in column order (the row's
+ * sum, sum_J K_IJ in that order, into sum[i]) and cleared.  No columns are
+ * collected, no counts, no idx, val or ptr written, no blocks moved, no
+ * pages of K touched.  With vals (phase values_only: the numeric fill
+ * alone), the values are also written as they are read, at K's row offsets
+ * (a fresh array of nnz_K doubles: the values' pages first touched here as
+ * a fill into a pattern touches them), and compared with K's bit for bit.
+ * Returns the rows whose sum is not bit for bit that of K's row in its order
+ * (or whose lumped mass is not m's, or with vals whose values or length are
+ * not K's), or SIZE_MAX if the workspace cannot be had. */
+static size_t rows_only(const mfs_plan *pl, double c0, double rho, const mfs_csr *K,
+                        const double *m, double *sum, double *vals)
+{
+  const size_t n = mfs_plan_particles(pl)->n;
+  const size_t *tptr;
+  const int *tidx;
+  const double *ttab;
+  mfs_plan_table(pl, &tptr, &tidx, &ttab);
+  const int nt = bench_threads(), nc = 3;
+  size_t B = n / (4 * (size_t)nt), hi = 65536 / (size_t)nt;
+  hi = hi < 1024 ? 1024 : hi;
+  B = B < 1024 ? 1024 : B > hi ? hi : B;
+  const size_t nb = (n + B - 1) / B, mx = mfs_plan_max_neighbours(pl);
+  size_t span = 1, ent = 1, pts = 1, wide = 1; /* the largest block's points and rows */
+  for (size_t b = 0; b < nb; b++) {
+    size_t r1 = (b + 1) * B < n ? (b + 1) * B : n, q0 = SIZE_MAX, q1 = 0, e = 0;
+    for (size_t i = b * B; i < r1; i++) {
+      size_t nq;
+      const int *Q;
+      mfs_plan_particle_points(pl, i, &nq, &Q);
+      if (nq) {
+        q0 = (size_t)Q[0] < q0 ? (size_t)Q[0] : q0;
+        q1 = (size_t)Q[nq - 1] > q1 ? (size_t)Q[nq - 1] : q1;
+        int lo = INT32_MAX, h = -1;
+        for (size_t t = 0; t < nq; t++) {
+          size_t e0 = tptr[Q[t]], e1 = tptr[Q[t] + 1];
+          if (e1 > e0) {
+            lo = tidx[e0] < lo ? tidx[e0] : lo;
+            h = tidx[e1 - 1] > h ? tidx[e1 - 1] : h;
+          }
+        }
+        wide = h >= lo && (size_t)(h - lo) + 1 > wide ? (size_t)(h - lo) + 1 : wide;
+      }
+    }
+    if (q0 != SIZE_MAX) {
+      span = q1 - q0 + 1 > span ? q1 - q0 + 1 : span;
+      pts = q1 - q0 + 1 > pts ? q1 - q0 + 1 : pts;
+      for (size_t Q = q0; Q <= q1; Q++)
+        e += tptr[Q + 1] - tptr[Q];
+      ent = e > ent ? e : ent;
+    }
+  }
+  /* per thread: evaluator, slots and chunk (as large as the block's window
+   * of points: not smaller than the library's), the dense window of columns */
+  mfs_eval ev[64];
+  int *slot[64] = {0}, *need[64] = {0}, *kept[64] = {0};
+  double *ctab[64] = {0}, *acc[64] = {0};
+  uint64_t *bits[64] = {0};
+  size_t bad = 0;
+  int ok = nt <= 64;
+  memset(ev, 0, sizeof ev);
+  for (int t = 0; t < nt && ok; t++) {
+    ok = mfs_plan_evaluator(pl, 1, ev + t) == MFS_OK;
+    slot[t] = malloc(span * sizeof *slot[t]);
+    need[t] = malloc(pts * sizeof *need[t]);
+    kept[t] = malloc(mx * sizeof *kept[t]);
+    ctab[t] = malloc(ent * nc * sizeof *ctab[t]);
+    acc[t] = calloc(wide, sizeof *acc[t]);
+    bits[t] = malloc(((wide >> 6) + 1) * sizeof *bits[t]);
+    ok = ok && slot[t] && need[t] && kept[t] && ctab[t] && acc[t] && bits[t];
+    for (size_t k = 0; ok && k < span; k++)
+      slot[t][k] = -1;
+  }
+  if (!ok) {
+    bad = SIZE_MAX;
+    goto done;
+  }
+#pragma omp parallel for schedule(dynamic, 1) num_threads(nt)
+  for (size_t b = 0; b < nb; b++) {
+    const int t = omp_get_thread_num();
+    size_t r1 = (b + 1) * B < n ? (b + 1) * B : n, q0 = SIZE_MAX, np = 0, ne = 0;
+    for (size_t i = b * B; i < r1; i++) {
+      size_t nq;
+      const int *Q;
+      mfs_plan_particle_points(pl, i, &nq, &Q);
+      q0 = nq && (size_t)Q[0] < q0 ? (size_t)Q[0] : q0;
+    }
+    for (size_t i = b * B; i < r1; i++) { /* the block's points, evaluated */
+      size_t nq;
+      const int *Q;
+      mfs_plan_particle_points(pl, i, &nq, &Q);
+      for (size_t k = 0; k < nq; k++)
+        if (slot[t][Q[k] - q0] < 0) {
+          slot[t][Q[k] - q0] = (int)ne;
+          ne += tptr[Q[k] + 1] - tptr[Q[k]];
+          need[t][np++] = Q[k];
+        }
+    }
+    for (size_t k = 0; k < np; k++)
+      mfs_plan_eval_point(pl, ev + t, (size_t)need[t][k], kept[t],
+                          ctab[t] + (size_t)slot[t][need[t][k] - q0] * nc, NULL);
+    for (size_t i = b * B; i < r1; i++) { /* the rows */
+      size_t nq;
+      const int *Q;
+      mfs_plan_particle_points(pl, i, &nq, &Q);
+      int lo = INT32_MAX, h = -1; /* the row's window of columns */
+      for (size_t k = 0; k < nq; k++)
+        if (tptr[Q[k] + 1] > tptr[Q[k]]) {
+          lo = tidx[tptr[Q[k]]] < lo ? tidx[tptr[Q[k]]] : lo;
+          h = tidx[tptr[Q[k] + 1] - 1] > h ? tidx[tptr[Q[k] + 1] - 1] : h;
+        }
+      const size_t nw = h < lo ? 0 : ((size_t)(h - lo) >> 6) + 1;
+      double *a = acc[t], lump = 0.0, s = 0.0;
+      uint64_t *bt = bits[t];
+      memset(bt, 0, nw * sizeof *bt);
+      const mfs_quad *q = mfs_plan_quad(pl);
+      for (size_t k = 0; k < nq; k++) {
+        size_t e0 = tptr[Q[k]], nn = tptr[Q[k] + 1] - e0, iI = 0;
+        const int *ix = tidx + e0;
+        const double *tab = ctab[t] + (size_t)slot[t][Q[k] - q0] * nc, w = q->w[Q[k]];
+        while (iI < nn && ix[iI] != (int)i)
+          iI++;
+        iI = iI == nn ? 0 : iI;
+        const double *fi = tab + iI * nc, wc = w * c0, i1 = fi[1], i2 = fi[2];
+        lump += rho * w * fi[0];
+        for (size_t e = 0; e < nn; e++) {
+          const double *fj = tab + e * nc;
+          double g = 0.0;
+          g += i1 * fj[1];
+          g += i2 * fj[2];
+          unsigned d = (unsigned)(ix[e] - lo);
+          a[d] += wc * g;
+          bt[d >> 6] |= (uint64_t)1 << (d & 63);
+        }
+      }
+      size_t o = K->ptr[i];
+      if (vals)
+        for (size_t u = 0; u < nw; u++) /* read once in order, written, cleared */
+          for (uint64_t v = bt[u]; v; v &= v - 1) {
+            unsigned d = (unsigned)(u << 6) + (unsigned)__builtin_ctzll(v);
+            s += a[d];
+            vals[o++] = a[d];
+            a[d] = 0.0;
+          }
+      else
+        for (size_t u = 0; u < nw; u++) /* read once in order and cleared */
+          for (uint64_t v = bt[u]; v; v &= v - 1) {
+            unsigned d = (unsigned)(u << 6) + (unsigned)__builtin_ctzll(v);
+            s += a[d];
+            a[d] = 0.0;
+          }
+      sum[i] = s;
+      if (vals && (o != K->ptr[i + 1] ||
+                   memcmp(vals + K->ptr[i], K->val + K->ptr[i], (o - K->ptr[i]) * sizeof *vals)))
+        sum[i] = NAN;
+      if (lump != m[i])
+        sum[i] = NAN;
+    }
+    for (size_t k = 0; k < np; k++)
+      slot[t][need[t][k] - q0] = -1;
+  }
+  for (size_t i = 0; i < n; i++) { /* K's rows' sums, in its order */
+    double s = 0.0;
+    for (size_t e = K->ptr[i]; e < K->ptr[i + 1]; e++)
+      s += K->val[e];
+    bad += memcmp(&s, sum + i, sizeof s) != 0;
+  }
+done:
+  for (int t = 0; t < nt && t < 64; t++) {
+    mfs_eval_free(ev + t);
+    free(slot[t]);
+    free(need[t]);
+    free(kept[t]);
+    free(ctab[t]);
+    free(acc[t]);
+    free(bits[t]);
+  }
+  return bad;
+}
+
 typedef enum { MODE_MODEL, MODE_TABLE, MODE_SOLVER } bench_mode;
 static const char *const mode_names[] = {"model", "table", "solver"};
 
@@ -300,7 +515,7 @@ static int bench(FILE *f, int n_side, int rep, bench_mode mode, int checks, doub
   mfs_plan *pl = NULL;
   mfs_csr *K = NULL, *K2 = NULL;
   double *m = NULL, *m2 = NULL, *ref = NULL;
-  row_ctx r = {f, n_side, rep, mode_names[mode], (size_t)n_side * (size_t)n_side, 0, 0, bps};
+  row_ctx r = {f, n_side, rep, mode_names[mode], (size_t)n_side * (size_t)n_side, 0, 0, bps, 0.0};
   if (mode == MODE_SOLVER)
     return bench_solver2d(&r, n_side);
   mfs_lattice_spec ls = {.dim = 2,
@@ -365,12 +580,23 @@ static int bench(FILE *f, int n_side, int rep, bench_mode mode, int checks, doub
   m = malloc(p->n * sizeof *m);
   if (!m)
     goto done;
+  /* the particles' lists of points (built by the first assembly, timed apart:
+   * the rows need them with or without a CSR) */
+  t0 = now();
+  st = mfs_plan_transpose(pl);
+  stamp t_tr = since(t0);
+  what = "transpose";
+  if (st != MFS_OK)
+    goto done;
+  row(&r, "transpose", t_tr, -1.0, -1.0, 4.0 * (double)pnnz + 8.0 * (double)p->n);
+  t_total = add(t_total, t_tr);
   t0 = now();
   st = mfs_assemble(pl, &mat, NULL, &K, NULL, m, NULL);
   stamp t_asm = since(t0);
   what = "assembly";
   if (st != MFS_OK)
     goto done;
+  double peak_total = peak_rss_mb();
   r.nnz = K->ptr[K->nrow];
   double sm = 0.0;
   for (size_t i = 0; i < p->n; i++)
@@ -380,7 +606,44 @@ static int bench(FILE *f, int n_side, int rep, bench_mode mode, int checks, doub
   row(&r, "assembly", t_asm, k_ones(K), -1.0,
       12.0 * (double)r.nnz + 8.0 * (double)(K->nrow + p->n));
   t_total = add(t_total, t_asm);
-  row(&r, "total", t_total, -1.0, -1.0,
+  /* the CSR build's share (model mode): the assembly's time less that of
+   * its rows alone (rows_only: the same evaluation and accumulation, no
+   * CSR), over the assembly's (the transpose and mfs_assemble) */
+  double share = -1.0;
+  if (mode == MODE_MODEL) {
+    /* CPU time (user + sys, every thread's): on a shared machine the wall
+     * time of two passes run one after the other is not comparable */
+    const double c_asm = t_asm.user + t_asm.sys, c_all = t_tr.user + t_tr.sys + c_asm;
+    for (int fill = 0; fill < 2; fill++) {
+      double *sum = malloc(p->n * sizeof *sum), *vals = NULL;
+      st = MFS_ENOMEM;
+      what = fill ? "values_only" : "rows_only";
+      if (!sum || (fill && !(vals = malloc((r.nnz ? r.nnz : 1) * sizeof *vals)))) {
+        free(sum);
+        goto done;
+      }
+      t0 = now();
+      size_t nbad = rows_only(pl, mat.modulus, mat.density, K, m, sum, vals);
+      stamp t_rows = since(t0);
+      free(sum);
+      free(vals);
+      if (nbad == SIZE_MAX)
+        goto done;
+      double c_rows = t_rows.user + t_rows.sys, sh = (c_asm - c_rows) / c_all;
+      sh = sh < 0.0 ? 0.0 : sh;
+      row(&r, what, t_rows, (double)nbad, sh,
+          fill ? 8.0 * (double)(r.nnz + p->n) : 8.0 * (double)p->n);
+      st = MFS_EINVAL;
+      if (nbad) {
+        fprintf(stderr, "bench_assembly: n = %d: %zu rows of %s differ from K's\n", n_side, nbad,
+                what);
+        goto done;
+      }
+      share = sh; /* the total's: beyond the numeric fill */
+    }
+  }
+  r.peak = peak_total;
+  row(&r, "total", t_total, -1.0, share,
       12.0 * (double)r.nnz + 8.0 * (double)(K->nrow + p->n) +
           (mode == MODE_TABLE ? 32.0 : 8.0) * (double)pnnz);
   /* the separate path of the solvers (a pattern reused): after the total's
@@ -547,7 +810,7 @@ int main(int argc, char **argv)
       waitpid(pid, NULL, 0);
   }
   fprintf(f, "n_side,nodes,quad_points,rep,mode,threads,phase,seconds,user_s,sys_s,peak_rss_mb,"
-             "nnz_K,bytes_per_nnz,error,ratio,limit_s,fraction,bandwidth_gbs\n");
+             "nnz_K,bytes_per_nnz,error,ratio,limit_s,fraction,bandwidth_gbs,load_1min\n");
   fflush(f);
   int rc = 0;
   for (int s = 0; s < ns; s++)

@@ -321,7 +321,8 @@ static inline void row_point(const mfs_row *r, size_t Q, mfs_point *pt)
   /* field by field: an initializer would clear the padding (a memset) */
   pt->nn = r->tptr[Q + 1] - e0;
   pt->idx = r->tidx + e0;
-  pt->phi = r->cslot ? r->ctab + (size_t)r->cslot[Q] * (size_t)r->nc : r->ttab + e0 * (size_t)r->nc;
+  pt->phi = r->cslot ? r->ctab + (size_t)r->cslot[Q - r->cq0] * (size_t)r->nc
+                     : r->ttab + e0 * (size_t)r->nc;
   pt->ncomp = r->nc;
   pt->w = r->qw[Q];
   pt->x = r->qx + Q * (size_t)r->dim;
@@ -514,7 +515,8 @@ void mfs_row_sort(mfs_row *r)
 typedef struct {
   mfs_row r;
   mfs_eval ev;     /* streaming: the plan's evaluator */
-  int *slot;       /* nq: entry of each point's row in ctab, or -1 */
+  int *slot;       /* the widest block's window of points: entry of each point's row in
+                      ctab (slot[Q - q0], q0 the block's smallest point), or -1 */
   int *need;       /* the points of the block */
   int *kept;       /* a point's neighbours (equal to its list) */
   double *ctab;    /* the block's table rows */
@@ -537,7 +539,17 @@ typedef struct {
   /* if not NULL (and no pattern): row I assembled and delivered by this
    * instead of mfs_row_assemble and fn (r: the thread's row workspace) */
   mfs_status (*row)(void *ctx, mfs_row *r, size_t I, int thread);
+  /* if set: the blocks in as many contiguous ranges as threads (range g:
+   * blocks sweep_range(g) .. sweep_range(g + 1) - 1), each range's blocks in
+   * order by one thread (mfs_assemble's rows appended range by range) */
+  int ranges;
 } sweep_job;
+
+/* The first block of range g of nb blocks in nt ranges. */
+static inline size_t sweep_range(size_t g, size_t nb, int nt)
+{
+  return g * nb / (size_t)nt;
+}
 
 static void sweep_ws_free(sweep_ws *w)
 {
@@ -552,20 +564,43 @@ static void sweep_ws_free(sweep_ws *w)
 
 /* Rows per block: without a table the points of a block's boundary are
  * evaluated by both neighbouring blocks, so blocks are large (a few percent
- * of them on a lattice of 10^6 particles) but still several per thread. */
+ * of them on a lattice of 10^6 particles) but still several per thread; each
+ * thread holds the table rows of its block, so with nt threads a block has
+ * at most 65536 / nt rows: the threads' tables together no larger than one
+ * thread's (the sweep's memory does not grow with the threads). */
 static size_t sweep_block(size_t n, int table, int nt)
 {
   if (table)
     return 2048;
-  size_t b = n / (4 * (size_t)nt);
-  return b < 1024 ? 1024 : b > 65536 ? 65536 : b;
+  size_t b = n / (4 * (size_t)nt), hi = 65536 / (size_t)nt;
+  hi = hi < 1024 ? 1024 : hi;
+  return b < 1024 ? 1024 : b > hi ? hi : b;
+}
+
+/* The window of the points the rows of [r0, r1) need: the smallest, *q0,
+ * and their span (0: none); the particles' lists of points are sorted. */
+static size_t block_window(const mfs_plan *pl, size_t r0, size_t r1, size_t *q0)
+{
+  size_t lo = SIZE_MAX, hi = 0;
+  for (size_t I = r0; I < r1; I++) {
+    size_t nq;
+    const int *Q;
+    mfs_plan_particle_points(pl, I, &nq, &Q);
+    if (nq) {
+      lo = (size_t)Q[0] < lo ? (size_t)Q[0] : lo;
+      hi = (size_t)Q[nq - 1] > hi ? (size_t)Q[nq - 1] : hi;
+    }
+  }
+  *q0 = lo == SIZE_MAX ? 0 : lo;
+  return lo == SIZE_MAX ? 0 : hi - lo + 1;
 }
 
 /* The points the rows of [r0, r1) need, counted (npts) with their entries
- * (nent); with slot/need, also listed in need with their entries in slot.
- * slot is left reset when need is NULL. */
-static void block_points(const mfs_plan *pl, size_t r0, size_t r1, int *slot, int *need,
-                         size_t *npts, size_t *nent)
+ * (nent); with slot/need, also listed in need with their entries in slot
+ * (slot[Q - q0], q0 the block's window's start, block_window).  slot is left
+ * reset when need is NULL. */
+static void block_points(const mfs_plan *pl, size_t r0, size_t r1, size_t q0, int *slot,
+                         int *need, size_t *npts, size_t *nent)
 {
   const size_t *tptr;
   const int *tidx;
@@ -577,8 +612,8 @@ static void block_points(const mfs_plan *pl, size_t r0, size_t r1, int *slot, in
     const int *Q;
     mfs_plan_particle_points(pl, I, &nq, &Q);
     for (size_t t = 0; t < nq; t++)
-      if (slot[Q[t]] < 0) {
-        slot[Q[t]] = (int)ne;
+      if (slot[Q[t] - q0] < 0) {
+        slot[Q[t] - q0] = (int)ne;
         ne += tptr[Q[t] + 1] - tptr[Q[t]];
         if (need)
           need[np] = Q[t];
@@ -591,7 +626,7 @@ static void block_points(const mfs_plan *pl, size_t r0, size_t r1, int *slot, in
       const int *Q;
       mfs_plan_particle_points(pl, I, &nq, &Q);
       for (size_t t = 0; t < nq; t++)
-        slot[Q[t]] = -1;
+        slot[Q[t] - q0] = -1;
     }
   *npts = np;
   *nent = ne;
@@ -604,13 +639,15 @@ static void sweep_block_run(const sweep_job *j, sweep_ws *w, size_t r0, size_t r
                             mfs_status *st_row)
 {
   const mfs_plan *pl = j->pl;
-  size_t np = 0, ne = 0;
+  size_t np = 0, ne = 0, q0 = 0;
   if (stream) {
-    block_points(pl, r0, r1, w->slot, w->need, &np, &ne);
+    block_window(pl, r0, r1, &q0);
+    w->r.cq0 = q0;
+    block_points(pl, r0, r1, q0, w->slot, w->need, &np, &ne);
     for (size_t k = 0; k < np; k++) {
       size_t Q = (size_t)w->need[k];
-      mfs_status s = mfs_plan_eval_point(pl, &w->ev, Q, w->kept,
-                                         w->ctab + (size_t)w->slot[Q] * (size_t)w->r.nc, NULL);
+      mfs_status s = mfs_plan_eval_point(
+          pl, &w->ev, Q, w->kept, w->ctab + (size_t)w->slot[Q - q0] * (size_t)w->r.nc, NULL);
       if (s != MFS_OK && Q < *bad_q) {
         *bad_q = Q;
         *st_q = s;
@@ -643,7 +680,7 @@ static void sweep_block_run(const sweep_job *j, sweep_ws *w, size_t r0, size_t r
     }
   if (stream)
     for (size_t k = 0; k < np; k++)
-      w->slot[w->need[k]] = -1;
+      w->slot[w->need[k] - q0] = -1;
 }
 
 /* sweep_block_run, its failures merged into the sweep's (the smallest). */
@@ -686,7 +723,13 @@ static mfs_status sweep_run(const sweep_job *j, size_t *bad)
   size_t *bnp = NULL, *bne = NULL;
   if (!ws)
     return MFS_ENOMEM;
-  size_t max_np = 0, max_ne = 0;
+  size_t max_np = 0, max_ne = 0, span = 1; /* the widest block's window of points */
+  if (stream)
+#pragma omp parallel for reduction(max : span) schedule(static) num_threads(nt)
+    for (size_t b = 0; b < nb; b++) {
+      size_t q0, r1 = (b + 1) * B < n ? (b + 1) * B : n, w = block_window(pl, b * B, r1, &q0);
+      span = w > span ? w : span;
+    }
   for (int t = 0; t < nt; t++) { /* every workspace before the parallel part */
     sweep_ws *w = ws + t;
     if ((st = row_init_cap(&w->r, pl, j->f, cap, table)) != MFS_OK)
@@ -702,12 +745,12 @@ static mfs_status sweep_run(const sweep_job *j, size_t *bad)
       if ((st = mfs_plan_evaluator(pl, order, &w->ev)) != MFS_OK)
         goto done;
       st = MFS_ENOMEM;
-      w->slot = mfs_malloc((nq ? nq : 1) * sizeof *w->slot);
+      w->slot = mfs_malloc(span * sizeof *w->slot);
       w->kept = mfs_malloc(mfs_plan_max_neighbours(pl) * sizeof *w->kept);
       if (!w->slot || !w->kept)
         goto done;
-      for (size_t Q = 0; Q < nq; Q++)
-        w->slot[Q] = -1;
+      for (size_t k = 0; k < span; k++)
+        w->slot[k] = -1;
     }
   }
   if (stream) { /* the largest block, to size the chunks */
@@ -717,8 +760,9 @@ static mfs_status sweep_run(const sweep_job *j, size_t *bad)
       goto done;
 #pragma omp parallel for schedule(dynamic, 1) num_threads(nt)
     for (size_t b = 0; b < nb; b++) {
-      size_t r1 = (b + 1) * B < n ? (b + 1) * B : n;
-      block_points(pl, b * B, r1, ws[mfs_thread_id()].slot, NULL, bnp + b, bne + b);
+      size_t q0, r1 = (b + 1) * B < n ? (b + 1) * B : n;
+      block_window(pl, b * B, r1, &q0);
+      block_points(pl, b * B, r1, q0, ws[mfs_thread_id()].slot, NULL, bnp + b, bne + b);
     }
     for (size_t b = 0; b < nb; b++) {
       max_np = bnp[b] > max_np ? bnp[b] : max_np;
@@ -756,11 +800,22 @@ static mfs_status sweep_run(const sweep_job *j, size_t *bad)
         }
       }
   }
+  if (j->ranges) {
+#pragma omp parallel for schedule(static, 1) num_threads(nt)
+    for (int g = 0; g < nt; g++) {
+      const int t = mfs_thread_id();
+      for (size_t b = sweep_range((size_t)g, nb, nt); b < sweep_range((size_t)g + 1, nb, nt); b++) {
+        size_t r1 = (b + 1) * B < n ? (b + 1) * B : n;
+        sweep_block_note(j, ws + t, b * B, r1, stream, t, &bad_q, &st_q, &bad_row, &st_row);
+      }
+    }
+  } else {
 #pragma omp parallel for schedule(dynamic, 1) num_threads(nt)
-  for (size_t b = 0; b < nb; b++) {
-    const int t = mfs_thread_id();
-    size_t r1 = (b + 1) * B < n ? (b + 1) * B : n;
-    sweep_block_note(j, ws + t, b * B, r1, stream, t, &bad_q, &st_q, &bad_row, &st_row);
+    for (size_t b = 0; b < nb; b++) {
+      const int t = mfs_thread_id();
+      size_t r1 = (b + 1) * B < n ? (b + 1) * B : n;
+      sweep_block_note(j, ws + t, b * B, r1, stream, t, &bad_q, &st_q, &bad_row, &st_row);
+    }
   }
   st = MFS_OK;
   if (bad_q != SIZE_MAX) { /* the table would have failed first, at its smallest point */
@@ -1119,16 +1174,17 @@ typedef struct {
 } fuse_buf;
 
 typedef struct {
-  fuse_buf out;   /* the matrices' entries */
-  /* more than one thread: block k's entries go to out at boff[k] (the sum of
-   * the bounds of the blocks before it), blen[k] of them, through its
-   * thread's view tb[t] (block tblk[t]); compacted after the sweep */
+  /* the entries of range g of the sweep's blocks (sweep_job.ranges), in row
+   * order, in tb[g] (at the bound of its rows; tb[0] at the bound of all
+   * rows: the others are appended to it after the sweep) */
   fuse_buf *tb;
-  size_t *tblk, *boff, *blen, B;
+  fuse_buf out;   /* the matrices' entries, tb[0]'s after the sweep */
+  size_t B, nb;
   int *srt;       /* per thread: a row's free columns, sorted (cap each) */
   uint64_t *bits; /* per thread: PATTERN_WORDS */
   size_t cap;
-  size_t *rlen;   /* per particle: the free columns of its row */
+  size_t *rlen;   /* the free columns of the row of free particle k at rlen[k ndof] (K's
+                     ptr + 1: made the row pointers after the sweep) */
   double *acc;    /* scalar_2d, per thread: PATTERN_WORDS * 64 columns, zero */
   int scalar_2d;  /* the forms: the stiffness of a 2D scalar model alone (fuse_scalar_2d) */
   const mfs_forms *f;
@@ -1215,17 +1271,15 @@ static size_t row_sorted_free(const mfs_plan *pl, size_t I, const mfs_row *r, co
 
 /* A row of the sweep, its free columns sorted, appended to its thread's
  * entries (to the matrix's with one thread); the lumped mass as fill_row. */
-static mfs_status fuse_row(void *vc, const mfs_row *r, size_t I, int thread)
+static mfs_status fuse_row_into(fuse_ctx *c, const mfs_row *r, size_t I, int thread, fuse_buf *b)
 {
-  fuse_ctx *c = vc;
-  fuse_buf *b = c->nt > 1 ? c->tb + thread : &c->out;
   int *srt = c->srt + (size_t)thread * c->cap;
   const size_t nd = (size_t)c->ndof, nd2 = nd * nd, rp = (size_t)c->prow[I];
   int *ix = b->idx + b->len;
   double *kv = b->kv ? b->kv + b->len : NULL, *mv = b->mv ? b->mv + b->len : NULL;
   const size_t len = row_sorted_free(c->pl, I, r, c->prow, c->bits + (size_t)thread * PATTERN_WORDS,
                                      srt, nd, ix, kv, mv);
-  c->rlen[I] = len;
+  c->rlen[rp * nd] = len;
   if (nd > 1)
     for (size_t a = 0, e = 0; a < nd; a++)
       for (size_t s = 0; s < len; s++) {
@@ -1252,7 +1306,7 @@ static mfs_status fuse_row(void *vc, const mfs_row *r, size_t I, int thread)
  * points), with a bitmap of the columns met: they come out sorted, without
  * a marker or a sort, and the window is cleared as it is read.  A window
  * wider than PATTERN_WORDS: the general row and fuse_row. */
-static mfs_status fuse_scalar_2d(fuse_ctx *c, mfs_row *r, size_t I, int thread)
+static mfs_status fuse_scalar_2d(fuse_ctx *c, mfs_row *r, size_t I, int thread, fuse_buf *b)
 {
   size_t nq;
   const int *Qs;
@@ -1262,9 +1316,8 @@ static mfs_status fuse_scalar_2d(fuse_ctx *c, mfs_row *r, size_t I, int thread)
   size_t nw = hi < lo ? 0 : ((size_t)(hi - lo) >> 6) + 1;
   if (nw > PATTERN_WORDS) {
     mfs_status st = mfs_row_assemble(r, c->pl, c->f, I);
-    return st == MFS_OK ? fuse_row(c, r, I, thread) : st;
+    return st == MFS_OK ? fuse_row_into(c, r, I, thread, b) : st;
   }
-  fuse_buf *b = c->nt > 1 ? c->tb + thread : &c->out;
   uint64_t *bits = c->bits + (size_t)thread * PATTERN_WORDS;
   double *acc = c->acc + (size_t)thread * PATTERN_WORDS * 64;
   const double rho = c->f->lumped_density, c0 = c->f->c[0];
@@ -1300,7 +1353,7 @@ static mfs_status fuse_scalar_2d(fuse_ctx *c, mfs_row *r, size_t I, int thread)
       }
       acc[d] = 0.0;
     }
-  c->rlen[I] = k;
+  c->rlen[c->prow[I]] = k;
   b->len += k;
   if (c->m) /* sph: the particle masses rho V_I (eq. 51) */
     c->m[c->prow[I]] = c->pu ? lump : c->density * (c->vol ? c->vol[I] : c->node_vol);
@@ -1312,25 +1365,29 @@ static mfs_status fuse_scalar_2d(fuse_ctx *c, mfs_row *r, size_t I, int thread)
 static mfs_status fuse_any(void *vc, mfs_row *r, size_t I, int thread)
 {
   fuse_ctx *c = vc;
-  fuse_buf *b = c->nt > 1 ? c->tb + thread : &c->out;
-  size_t k = I / c->B;
-  if (c->nt > 1 && c->tblk[thread] != k) { /* the first row of a block: its view */
-    c->tblk[thread] = k;
-    *b = (fuse_buf){.idx = c->out.idx + c->boff[k],
-                    .kv = c->out.kv ? c->out.kv + c->boff[k] : NULL,
-                    .mv = c->out.mv ? c->out.mv + c->boff[k] : NULL};
-  }
+  size_t k = I / c->B, g = 0; /* I's block and its range */
+  while (g + 1 < (size_t)c->nt && sweep_range(g + 1, c->nb, c->nt) <= k)
+    g++;
+  fuse_buf *b = c->tb + g;
   mfs_status st;
   if (c->scalar_2d) {
-    st = fuse_scalar_2d(c, r, I, thread);
+    st = fuse_scalar_2d(c, r, I, thread, b);
   } else {
     st = mfs_row_assemble(r, c->pl, c->f, I);
     if (st == MFS_OK)
-      st = fuse_row(c, r, I, thread);
+      st = fuse_row_into(c, r, I, thread, b);
   }
-  if (c->nt > 1)
-    c->blen[k] = b->len;
   return st;
+}
+
+/* The sweep's row function (not called: the job's row does the rows). */
+static mfs_status fuse_row(void *vc, const mfs_row *r, size_t I, int thread)
+{
+  (void)vc;
+  (void)r;
+  (void)I;
+  (void)thread;
+  return MFS_EINVAL;
 }
 
 static mfs_status fuse_buf_alloc(fuse_buf *b, size_t len, int k, int m)
@@ -1356,38 +1413,31 @@ static void *shrink(void *p, size_t bytes)
   return t ? t : p;
 }
 
-/* The exact entries of each block of B rows (the free columns of its rows,
- * pattern_row's count, times nd2) into bsum[0..nb), their sum into *total:
- * with more than one thread the blocks are written at these offsets. */
-static mfs_status block_counts(const mfs_plan *pl, const int *prow, size_t B, size_t nd2, int nt,
-                               size_t *bsum, size_t *total)
+/* Range g's entries appended to range 0's (which has room for them: its
+ * bound is the bound of every row), from its end, a chunk at a time, range
+ * g's arrays shrunk after each chunk: the pages of the two ranges together
+ * never more than the entries and a chunk. */
+static void fuse_append(fuse_buf *to, fuse_buf *from)
 {
-  const size_t n = mfs_plan_particles(pl)->n, nb = (n + B - 1) / B;
-  int *mark = mfs_malloc((size_t)nt * (n ? n : 1) * sizeof *mark);
-  uint64_t *bits = mfs_malloc((size_t)nt * 4 * PATTERN_WORDS * sizeof *bits);
-  if (!mark || !bits) {
-    mfs_free(mark);
-    mfs_free(bits);
-    return MFS_ENOMEM;
+  const size_t chunk = (size_t)1 << 20;
+  size_t len = from->len;
+  while (len > 0) {
+    size_t c = len < chunk ? len : chunk;
+    len -= c;
+    memcpy(to->idx + to->len + len, from->idx + len, c * sizeof *from->idx);
+    from->idx = shrink(from->idx, len * sizeof *from->idx);
+    if (from->kv) {
+      memcpy(to->kv + to->len + len, from->kv + len, c * sizeof *from->kv);
+      from->kv = shrink(from->kv, len * sizeof *from->kv);
+    }
+    if (from->mv) {
+      memcpy(to->mv + to->len + len, from->mv + len, c * sizeof *from->mv);
+      from->mv = shrink(from->mv, len * sizeof *from->mv);
+    }
   }
-  for (size_t i = 0; i < (size_t)nt * n; i++)
-    mark[i] = -1;
-  size_t tot = 0;
-#pragma omp parallel for reduction(+ : tot) schedule(dynamic, 1) num_threads(nt)
-  for (size_t b = 0; b < nb; b++) {
-    const int t = mfs_thread_id();
-    size_t r1 = (b + 1) * B < n ? (b + 1) * B : n, sum = 0;
-    for (size_t I = b * B; I < r1; I++)
-      if (prow[I] >= 0)
-        sum += nd2 * pattern_row(pl, I, prow, mark + (size_t)t * n, (int)I,
-                                 bits + (size_t)t * 4 * PATTERN_WORDS, NULL);
-    bsum[b] = sum;
-    tot += sum;
-  }
-  *total = tot;
-  mfs_free(mark);
-  mfs_free(bits);
-  return MFS_OK;
+  to->len += from->len;
+  fuse_buf_free(from);
+  *from = (fuse_buf){0};
 }
 
 mfs_status mfs_assemble(const mfs_plan *pl, const mfs_material *mat, const unsigned char *fixed,
@@ -1420,72 +1470,57 @@ mfs_status mfs_assemble(const mfs_plan *pl, const mfs_material *mat, const unsig
   mfs_status st = MFS_ENOMEM;
   mfs_csr *A = NULL, *C = NULL;
   int *prow = mfs_malloc((n ? n : 1) * sizeof *prow);
+  size_t nr = 0;
   fuse_ctx c = {.cap = cap, .ndof = nd, .pu = pu, .nt = nt, .density = mat->density,
                 .node_vol = d->node_volume_mass ? mfs_particles_node_volume(p) : 0.0,
                 .vol = d->node_volume_mass ? NULL : p->vol, .m = m, .pl = pl, .prow = prow};
-  c.rlen = mfs_calloc(n ? n : 1, sizeof *c.rlen);
+  if ((A = mfs_calloc(1, sizeof *A)))
+    A->ptr = mfs_calloc(n * (size_t)nd + 1, sizeof *A->ptr);
+  c.rlen = A ? A->ptr + 1 : NULL;
   c.srt = mfs_malloc((size_t)nt * cap * sizeof *c.srt);
   c.bits = mfs_malloc((size_t)nt * PATTERN_WORDS * sizeof *c.bits);
   c.f = &f;
   c.scalar_2d = p->dim == 2 && nd == 1 && K && !M;
   if (c.scalar_2d)
     c.acc = mfs_calloc((size_t)nt * PATTERN_WORDS * 64, sizeof *c.acc);
-  if (!prow || !c.rlen || !c.srt || !c.bits || (c.scalar_2d && !c.acc))
+  if (!prow || !A || !A->ptr || !c.srt || !c.bits || (c.scalar_2d && !c.acc))
     goto done;
   c.B = B;
-  size_t nf = free_rows(n, fixed, prow, NULL);
-  if (nt > 1 && (st = block_counts(pl, prow, B, nd2, nt, bsum, &total)) != MFS_OK)
+  nr = free_rows(n, fixed, prow, NULL) * (size_t)nd;
+  /* the entries: range g of the blocks (one per thread) appended in row
+   * order to tb[g], allocated at the bound of its rows (the pages past the
+   * rows' are never touched), tb[0] at the bound of all rows; after the sweep
+   * the other ranges are appended to tb[0] (fuse_append), which is shrunk to
+   * the entries: no count pass, each entry written once and moved at most
+   * once, the pages at most the entries' and a chunk */
+  c.nb = nb;
+  c.tb = mfs_calloc((size_t)nt, sizeof *c.tb);
+  if (!c.tb)
     goto done;
-  st = MFS_ENOMEM;
-  if (nt > 1) {
-    c.tb = mfs_calloc((size_t)nt, sizeof *c.tb);
-    c.tblk = mfs_malloc((size_t)nt * sizeof *c.tblk);
-    c.boff = bsum; /* the bounds' prefix sums, in place */
-    c.blen = mfs_calloc(nb ? nb : 1, sizeof *c.blen);
-    if (!c.tb || !c.tblk || !c.blen)
+  for (int g = 0; g < nt; g++) {
+    size_t bound = 0;
+    for (size_t k = sweep_range((size_t)g, nb, nt); g > 0 && k < sweep_range((size_t)g + 1, nb, nt); k++)
+      bound += bsum[k];
+    if (fuse_buf_alloc(c.tb + g, g ? bound : total, K != NULL, M != NULL) != MFS_OK)
       goto done;
-    for (int t = 0; t < nt; t++)
-      c.tblk[t] = SIZE_MAX;
-    for (size_t k = 0, o = 0; k < nb; k++) {
-      size_t w = bsum[k];
-      bsum[k] = o;
-      o += w;
-    }
-  } /* one thread: the blocks in order, appended to out */
-  /* the matrix's entries: one thread at their bound (the pages past the rows'
-   * are never touched, and the block is shrunk at the end); more threads at
-   * the exact counts, each block at its place (a block moved down from a bound
-   * would keep both its pages) */
-  if (fuse_buf_alloc(&c.out, total, K != NULL, M != NULL) != MFS_OK)
-    goto done;
+  }
   sweep_job j = {.pl = pl, .f = &f, .skip = fixed, .fn = fuse_row, .ctx = &c, .cap = cap,
-                 .row = fuse_any};
+                 .row = fuse_any, .ranges = 1};
   if ((st = sweep_run(&j, bad)) != MFS_OK)
     goto done;
-  if (nt > 1) /* the blocks moved down to their places, in order */
-    for (size_t k = 0; k < nb; k++) {
-      size_t o = c.boff[k], l = c.blen[k], at = c.out.len;
-      c.out.len += l;
-      if (o == at) /* in place: the exact counts */
-        continue;
-      c.out.len -= l;
-      memmove(c.out.idx + at, c.out.idx + o, l * sizeof *c.out.idx);
-      if (c.out.kv)
-        memmove(c.out.kv + at, c.out.kv + o, l * sizeof *c.out.kv);
-      if (c.out.mv)
-        memmove(c.out.mv + at, c.out.mv + o, l * sizeof *c.out.mv);
-      c.out.len += l;
-    }
+  for (int g = 1; g < nt; g++)
+    fuse_append(c.tb, c.tb + g);
+  c.out = c.tb[0];
+  c.tb[0] = (fuse_buf){0};
   st = MFS_ENOMEM;
-  const size_t nr = nf * (size_t)nd;
-  if (!(A = mfs_calloc(1, sizeof *A)) || !(A->ptr = mfs_malloc((nr + 1) * sizeof *A->ptr)))
-    goto done;
   A->nrow = A->ncol = nr;
   A->ptr[0] = 0;
-  for (size_t I = 0, r = 0; I < n; I++)
-    if (prow[I] >= 0)
-      for (int a = 0; a < nd; a++, r++)
-        A->ptr[r + 1] = A->ptr[r] + c.rlen[I] * (size_t)nd;
+  for (size_t r = 0; r < nr; r += (size_t)nd) { /* a row's length is at ptr[r + 1] */
+    size_t len = A->ptr[r + 1] * (size_t)nd;
+    for (int a = 0; a < nd; a++)
+      A->ptr[r + (size_t)a + 1] = A->ptr[r + (size_t)a] + len;
+  }
+  A->ptr = shrink(A->ptr, (nr + 1) * sizeof *A->ptr);
   const size_t nnz = c.out.len;
   if (K && M) { /* M: a copy of the pattern */
     if (!(C = mfs_calloc(1, sizeof *C)) || !(C->ptr = mfs_malloc((nr + 1) * sizeof *C->ptr)) ||
@@ -1518,13 +1553,12 @@ done:
   mfs_csr_free(A);
   mfs_csr_free(C);
   fuse_buf_free(&c.out);
+  for (int g = 0; c.tb && g < nt; g++)
+    fuse_buf_free(c.tb + g);
   mfs_free(c.tb);
-  mfs_free(c.tblk);
-  mfs_free(c.blen);
   mfs_free(bsum);
   mfs_free(c.srt);
   mfs_free(c.bits);
-  mfs_free(c.rlen);
   mfs_free(c.acc);
   mfs_free(prow);
   return st;

@@ -81,7 +81,8 @@ typedef struct {
   int ndof;
   size_t cap;     /* columns a row can have; the accumulators hold one more (a discard slot) */
   const double *ctab; /* a chunk of the table (mfs_row_sweep without a plan table), */
-  const int *cslot;   /* the entry of each point's row in it */
+  const int *cslot;   /* the entry of each point's row in it, */
+  size_t cq0;         /* by point number less this (the block's smallest point) */
   int *mark;      /* particles: position in the row, or -1 */
   int *pcol;      /* a point's neighbours: their positions in the row */
   const size_t *tptr; /* the plan's table (mfs_plan_table) and points */
@@ -155,9 +156,11 @@ mfs_status mfs_assemble_fill(const mfs_plan *pl, const mfs_material *mat,
  * pattern of mfs_assemble_pattern(pl, ndof of mat, fixed) and the values
  * mfs_assemble_fill writes into it, bit for bit; m (if not NULL) the lumped
  * mass as there.  Each row is accumulated once (mfs_row_sweep), its columns
- * sorted and appended in row order: no separate pass for the pattern (with
- * threads, each block of rows is written at an upper bound of its offset
- * and the blocks are moved down in order at the end).
+ * sorted and appended in row order: no separate pass for the pattern, no
+ * count pass (with threads, each thread appends the rows of a contiguous
+ * range of blocks to its own arrays, reserved at the bound of their entries
+ * and touched only where written, and the ranges are appended to the first
+ * one's in order at the end, a chunk at a time).
  * MFS_OK, MFS_EINVAL (K and M both NULL, plane strain in 1D), MFS_ESINGULAR
  * (at point *bad), MFS_ENOMEM. */
 mfs_status mfs_assemble(const mfs_plan *pl, const mfs_material *mat, const unsigned char *fixed,
