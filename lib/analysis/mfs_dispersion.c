@@ -858,13 +858,30 @@ static HERM_INLINE void tql_lanes(int n, int np, double *D, double *E, int *bad)
         it[p] = 0;
         continue;
       }
+      if (m == l + 1) { /* a 2 x 2 block: its eigenvalues in closed form (LAPACK's dlae2) */
+        const double sm = d[l] + d[m], df = d[l] - d[m], tb = 2.0 * e[l];
+        const double rt = sqrt(df * df + tb * tb), big = fabs(d[l]) > fabs(d[m]) ? d[l] : d[m];
+        const double sml = fabs(d[l]) > fabs(d[m]) ? d[m] : d[l];
+        double r1 = 0.5 * (sm < 0.0 ? sm - rt : sm + rt), r2;
+        if (sm == 0.0) {
+          r1 = 0.5 * rt;
+          r2 = -0.5 * rt;
+        } else {
+          r2 = (big / r1) * sml - (e[l] / r1) * e[l];
+        }
+        d[l] = r1;
+        d[m] = r2;
+        e[l] = 0.0;
+        continue;
+      }
       if (it[p]++ == 30) {
         bad[p] = 1;
         L[p] = n;
         continue;
       }
-      double g = (d[l + 1] - d[l]) / (2.0 * e[l]), r = sqrt(g * g + 1.0); /* |g| < 1 / eps */
-      g = d[m] - d[l] + e[l] / (g + copysign(r, g));
+      /* Wilkinson's shift d[l] - e^2 / (h + sign(h) sqrt(h^2 + e^2)), h = (d[l + 1] - d[l]) / 2 */
+      const double h = 0.5 * (d[l + 1] - d[l]), el = e[l];
+      double g = d[m] - d[l] + el * el / (h + copysign(sqrt(h * h + el * el), h)), r;
       double s = 1.0, c = 1.0, q = 0.0;
       int i;
       for (i = m - 1; i >= l; i--) {
@@ -875,8 +892,9 @@ static HERM_INLINE void tql_lanes(int n, int np, double *D, double *E, int *bad)
           e[m] = 0.0;
           break;
         }
-        s = f / r;
-        c = g / r;
+        const double ir = 1.0 / r;
+        s = f * ir;
+        c = g * ir;
         g = d[i + 1] - q;
         r = (d[i] - g) * s + 2.0 * c * b;
         q = s * r;
