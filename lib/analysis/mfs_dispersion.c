@@ -1414,6 +1414,72 @@ static void note_fail(first_fail *f, mfs_status st, size_t s, size_t i)
     *f = (first_fail){.st = st, .s = s, .i = i};
 }
 
+/* Two Hermitian branches with a diagonal mass (one particle in plane strain,
+ * two anti-plane), over the lanes of a block: plane_contract or
+ * scalar_contract and eig_solve's closed form, the same operations in the
+ * same order on each point, without the copies and the general paths.  0 if
+ * a point of the block needs them (a mass not real and positive, a coupling
+ * mass): then the caller takes the block point by point. */
+static int herm2_lanes(const mfs_disp_plan *dp, int np, const size_t *idx, const double *re,
+                       const double *im, const disp_stress *s, size_t si, double complex *w,
+                       first_fail *first)
+{
+  double a[BLK], d[BLK], kr[BLK], ki[BLK], m0[BLK], m1[BLK];
+  int ok = 1;
+  if (dp->plane) { /* K_ik = A_ijkl SA^{jl} (Lagrangian: hermitian()), M = SM I */
+    if (dp->nb != 1 || dp->euler2)
+      return 0;
+    const double *t = s->ps.A;
+    for (int p = 0; p < np; p++) {
+      double k00 = 0.0, k11 = 0.0, r01 = 0.0, i01 = 0.0;
+      for (int j = 0; j < 2; j++)
+        for (int l = 0; l < 2; l++) {
+          const double ar = re[(j * 2 + l) * BLK + p], ai = im[(j * 2 + l) * BLK + p];
+          k00 += t[P4(0, j, 0, l)] * ar;
+          k11 += t[P4(1, j, 1, l)] * ar;
+          r01 += t[P4(0, j, 1, l)] * ar;
+          i01 += t[P4(0, j, 1, l)] * ai;
+        }
+      m0[p] = m1[p] = re[8 * BLK + p];
+      ok = ok && im[8 * BLK + p] == 0.0 && m0[p] > 0.0;
+      a[p] = k00;
+      d[p] = k11;
+      kr[p] = r01;
+      ki[p] = i01;
+    }
+  } else { /* K = ca SA + cg SG, M = SM, of the blocks (0,0), (0,1), (1,1) */
+    if (dp->nb != 2)
+      return 0;
+    const double ca = s->ca, cg = s->cg;
+    for (int p = 0; p < np; p++) {
+      a[p] = ca * re[0 * BLK + p] + cg * re[1 * BLK + p];
+      kr[p] = ca * re[3 * BLK + p] + cg * re[4 * BLK + p];
+      ki[p] = ca * im[3 * BLK + p] + cg * im[4 * BLK + p];
+      d[p] = ca * re[9 * BLK + p] + cg * re[10 * BLK + p];
+      m0[p] = re[2 * BLK + p];
+      m1[p] = re[11 * BLK + p];
+      ok = ok && im[2 * BLK + p] == 0.0 && im[11 * BLK + p] == 0.0 && re[5 * BLK + p] == 0.0 &&
+           im[5 * BLK + p] == 0.0 && m0[p] > 0.0 && m1[p] > 0.0;
+    }
+  }
+  if (!ok)
+    return 0;
+  for (int p = 0; p < np; p++) { /* eig_solve's closed form */
+    const double ap = a[p] / m0[p], dp2 = d[p] / m1[p], h = 0.5 * (ap - dp2);
+    const double k2 = kr[p] * kr[p] + ki[p] * ki[p];
+    const double r = sqrt(h * h + k2 / (m0[p] * m1[p]));
+    double complex *wp = w + idx[p] * 2;
+    if (isfinite(r) && isfinite(ap + dp2)) {
+      wp[0] = 0.5 * (ap + dp2) - r;
+      wp[1] = 0.5 * (ap + dp2) + r;
+    } else {
+      wp[0] = wp[1] = CMPLX(NAN, NAN);
+      note_fail(first, MFS_EDOMAIN, si, idx[p]);
+    }
+  }
+  return 1;
+}
+
 /* Evaluate the points idx[0..np) of phases ph1, ph2, all of one form (vers),
  * at the stresses at[0..ns) (of stress index s0 on), into omega2 (the ray's
  * layout, stresses ld apart); failures noted in *first. */
@@ -1450,6 +1516,9 @@ static void ray_block(const mfs_disp_plan *dp, int np, const size_t *idx, const 
       }
       continue;
     }
+    if (herm && nb == 2 && herm2_lanes(dp, np, idx, re, im, at + q, s0 + q,
+                                       omega2 + (s0 + q) * ld, first))
+      continue;
     /* eig_solve point by point, but the Hermitian problems of more than two
      * branches with a diagonal mass (its herm_small_eigvals) together */
     double Ar[16 * HERM_LANES], Ai[16 * HERM_LANES], wb[4 * HERM_LANES];
