@@ -1480,6 +1480,60 @@ static int herm2_lanes(const mfs_disp_plan *dp, int np, const size_t *idx, const
   return 1;
 }
 
+/* Four Hermitian branches with a diagonal mass (two particles in plane
+ * strain), over the lanes of a block: plane_contract's triangle c >= r, scaled
+ * as herm_scaled, the same operations in the same order on each point, then
+ * herm_small_eigvals on them all.  0 if a point of the block needs the
+ * general path (a mass not real and positive, a coupling mass). */
+static int herm4_lanes(const mfs_disp_plan *dp, int np, const size_t *idx, const double *re,
+                       const double *im, const disp_stress *s, size_t si, double complex *w,
+                       first_fail *first)
+{
+  if (!dp->plane || dp->nb != 2 || dp->euler2)
+    return 0;
+  double Ar[16 * HERM_LANES], Ai[16 * HERM_LANES], wb[4 * HERM_LANES];
+  int bad[HERM_LANES], ok = 1;
+  const double *t = s->ps.A;
+  for (int p = 0; p < np; p++) { /* the masses: blocks (0,0), (1,1) real positive, (0,1) zero */
+    const double ma = re[8 * BLK + p], mb = re[(3 * 9 + 8) * BLK + p];
+    ok = ok && ma > 0.0 && mb > 0.0 && im[8 * BLK + p] == 0.0 && im[(3 * 9 + 8) * BLK + p] == 0.0 &&
+         re[(9 + 8) * BLK + p] == 0.0 && im[(9 + 8) * BLK + p] == 0.0;
+  }
+  if (!ok)
+    return 0;
+  for (int p = 0; p < np; p++) {
+    double is[4];
+    is[0] = is[1] = 1.0 / sqrt(re[8 * BLK + p]);
+    is[2] = is[3] = 1.0 / sqrt(re[(3 * 9 + 8) * BLK + p]);
+    double *ar = Ar + 16 * p, *ai = Ai + 16 * p;
+    for (int r = 0; r < 4; r++)
+      for (int c = r; c < 4; c++) {
+        const int i = r & 1, k = c & 1, c0 = ((r >> 1) * 2 + (c >> 1)) * 9;
+        double vr = 0.0, vi = 0.0;
+        for (int j = 0; j < 2; j++)
+          for (int l = 0; l < 2; l++) {
+            vr += t[P4(i, j, k, l)] * re[(c0 + j * 2 + l) * BLK + p];
+            vi += t[P4(i, j, k, l)] * im[(c0 + j * 2 + l) * BLK + p];
+          }
+        const double q = is[r] * is[c];
+        ar[r * 4 + c] = vr * q;
+        ai[r * 4 + c] = vi * q;
+      }
+  }
+  herm_small_eigvals(4, np, Ar, Ai, wb, bad);
+  for (int p = 0; p < np; p++) {
+    double complex *wp = w + idx[p] * 4;
+    int fin = !bad[p];
+    for (int k = 0; k < 4; k++)
+      fin = fin && isfinite(wb[4 * p + k]);
+    for (int k = 0; k < 4; k++)
+      wp[k] = fin ? CMPLX(wb[4 * p + k], 0.0) : CMPLX(NAN, NAN);
+    if (!fin)
+      note_fail(first, MFS_EDOMAIN, si, idx[p]);
+  }
+  return 1;
+}
+
 /* Evaluate the points idx[0..np) of phases ph1, ph2, all of one form (vers),
  * at the stresses at[0..ns) (of stress index s0 on), into omega2 (the ray's
  * layout, stresses ld apart); failures noted in *first. */
@@ -1517,6 +1571,9 @@ static void ray_block(const mfs_disp_plan *dp, int np, const size_t *idx, const 
       continue;
     }
     if (herm && nb == 2 && herm2_lanes(dp, np, idx, re, im, at + q, s0 + q,
+                                       omega2 + (s0 + q) * ld, first))
+      continue;
+    if (herm && nb == 4 && herm4_lanes(dp, np, idx, re, im, at + q, s0 + q,
                                        omega2 + (s0 + q) * ld, first))
       continue;
     /* eig_solve point by point, but the Hermitian problems of more than two
