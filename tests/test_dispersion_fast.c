@@ -252,6 +252,76 @@ static void long_waves(void)
   }
 }
 
+/* The Hermitian solves (lumped mass: the closed 2 x 2 form, the 4 x 4 kernel
+ * of Householder and QL) against LAPACK's zheev of M^-1/2 K M^-1/2 from the
+ * direct symbols, to 1e-14 of the scale: at kappa = 0 (the rigid modes: a
+ * double root at 0 in plane strain), along the symmetric directions theta = 0,
+ * pi/4, pi/2 where branches cross (double roots), and across the zone and
+ * beyond it. */
+static void hermitian_solves(void)
+{
+  const mfs_frame L = MFS_FRAME_LAGRANGIAN;
+  const mfs_lattice_kind SQ = MFS_LATTICE_SQUARE;
+  struct {
+    const char *what;
+    mfs_disp_spec spec;
+    double sbar;
+  } cs[] = {
+    {"plane strain star", {.disc = disc(2, SQ, "stress-star", &mfs_shape_mls, 2.0, L,
+                                        MFS_PHYS_PLANE_STRAIN, 0)}, 0.1},
+    {"plane strain star D=2.6", {.disc = disc(2, SQ, "stress-star", &mfs_shape_mls, 2.6, L,
+                                              MFS_PHYS_PLANE_STRAIN, 0)}, -0.3},
+    {"anti-plane star", {.disc = disc(2, SQ, "stress-star", &mfs_shape_mls, 2.1, L,
+                                      MFS_PHYS_SCALAR, 0)}, 0.0},
+    {"plane strain stress-tri", {.disc = disc(2, SQ, "stress-tri", &mfs_shape_mls, 2.0, L,
+                                              MFS_PHYS_PLANE_STRAIN, 0)}, 0.2},
+  };
+  const double ths[6] = {0.0, M_PI / 4, M_PI / 2, 0.1234, -M_PI / 4, M_PI};
+  enum { NKH = 41 };
+  for (size_t c = 0; c < sizeof cs / sizeof cs[0]; c++) {
+    mfs_status st;
+    mfs_disp_plan *pl = mfs_disp_plan_alloc(&cs[c].spec, &st);
+    CHECK(pl != NULL, "%s: plan %s", cs[c].what, mfs_strerror(st));
+    if (!pl)
+      continue;
+    const int n = mfs_disp_branches(pl);
+    const int rigid = cs[c].spec.disc.material.physics == MFS_PHYS_PLANE_STRAIN ? 2 : 1;
+    double worst = 0.0;
+    for (int t = 0; t < 6; t++) {
+      double kap[NKH], km = mfs_disp_kappa_max(pl, ths[t]);
+      for (int i = 0; i < NKH; i++) /* 0, the zone's edge (i = 30), beyond */
+        kap[i] = km * i / 30.0;
+      double complex w[NKH * 4];
+      CHECK(mfs_disp_ray(pl, &cs[c].sbar, 1, ths[t], kap, NKH, w, 0) == MFS_OK, "%s: ray",
+            cs[c].what);
+      double ref[NKH * 4], scale = 0.0, diff = 0.0;
+      for (int i = 0; i < NKH; i++) {
+        double k[2] = {kap[i] * M_PI * cos(ths[t]), kap[i] * M_PI * sin(ths[t])};
+        double complex K[16], M[16], A[16];
+        CHECK(mfs_disp_symbols(pl, cs[c].sbar, k, K, M) == MFS_OK, "%s: symbols", cs[c].what);
+        for (int r = 0; r < n; r++)
+          for (int q = 0; q < n; q++)
+            A[r * n + q] = K[r * n + q] / sqrt(creal(M[r * n + r]) * creal(M[q * n + q]));
+        lapack_int info = LAPACKE_zheev(LAPACK_ROW_MAJOR, 'N', 'U', n, A, n, ref + i * n);
+        CHECK(info == 0, "%s: zheev info %d", cs[c].what, (int)info);
+        for (int b = 0; b < n; b++)
+          scale = fmax(scale, fabs(ref[i * n + b]));
+      }
+      for (int i = 0; i < NKH * n; i++) {
+        diff = fmax(diff, cabs(w[i] - ref[i]));
+        if (i < rigid) /* kappa = 0: the rigid translations (the optical branches are not 0) */
+          CHECK(fabs(creal(w[i])) <= 1e-14 * scale, "%s: theta %g, kappa 0: omega^2 %g of %g",
+                cs[c].what, ths[t], creal(w[i]), scale);
+      }
+      worst = fmax(worst, diff / scale);
+      CHECK(diff <= 1e-14 * scale, "%s: theta %g: against zheev %.3g of the scale %.3g",
+            cs[c].what, ths[t], diff / scale, scale);
+    }
+    printf("  %-44s Hermitian solve vs zheev %.2g\n", cs[c].what, worst);
+    mfs_disp_plan_free(pl);
+  }
+}
+
 static void errors(void)
 {
   mfs_status st;
@@ -285,6 +355,7 @@ int main(void)
 {
   configs();
   long_waves();
+  hermitian_solves();
   errors();
   return check_summary("test_dispersion_fast");
 }

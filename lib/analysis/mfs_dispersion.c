@@ -54,6 +54,7 @@ struct mfs_disp_plan {
    * their symmetric and antisymmetric parts, kept for the components that
    * are not zero everywhere. */
   int nraw, nc;
+  int upper;              /* Hermitian symbols: the blocks row <= col only (the rest is their adjoint) */
   double c0[MFS_DISP_NC], corig[MFS_DISP_NC]; /* sums over all terms, over those at d = 0 */
   size_t no;
   int *oi, *oj;           /* the offsets d = i a1 + j a2: i > 0, or i = 0 and j > 0 */
@@ -61,6 +62,8 @@ struct mfs_disp_plan {
   int csym[MFS_DISP_NC], canti[MFS_DISP_NC];
   double *sym, *anti;     /* no x nsym, no x nanti */
 };
+
+static int hermitian(const mfs_disp_plan *dp);
 
 static const char *const support_names[] = {"volume", "reference"};
 
@@ -284,9 +287,15 @@ static mfs_status fold_build(mfs_disp_plan *dp)
     for (int k = 0; k < dp->nraw; k++)
       c[k] += r[k];
   }
-  /* keep the components that are not zero at every offset */
+  /* keep the components that are not zero at every offset; of Hermitian
+   * symbols only the blocks on and above the diagonal (every solve reads
+   * that triangle: the contractions fill the rest as its adjoint) */
   dp->nsym = dp->nanti = 0;
+  dp->upper = hermitian(dp);
   for (int c = 0; c < nc; c++) {
+    const int blk = c / dp->nraw;
+    if (dp->upper && blk / dp->nb > blk % dp->nb)
+      continue;
     int s = 0, a = 0;
     for (o = 0; o < no; o++) {
       double p = pm[2 * o * (size_t)nc + c], m = pm[(2 * o + 1) * (size_t)nc + c];
@@ -595,15 +604,27 @@ static void plane_sum(const mfs_disp_plan *dp, const double *k, raw_sums *ps)
   }
 }
 
+/* The blocks below the diagonal of K and M (n x n, blocks of bs) as the
+ * adjoints of those above. */
+static void lower_adjoint(int n, int bs, double complex *K, double complex *M)
+{
+  for (int r = bs; r < n; r++)
+    for (int c = 0; c < r / bs * bs; c++) {
+      K[r * n + c] = conj(K[c * n + r]);
+      M[r * n + c] = conj(M[c * n + r]);
+    }
+}
+
 /* K and M (nbr x nbr) of a state from the sums: Lagrangian K_ik = A_ijkl SA^{jl};
- * Eulerian K_ik = a_ijkl SA^{jl} + sigma_im SA^{km} + sigma_ij SG^{jk} (eq. C6). */
+ * Eulerian K_ik = a_ijkl SA^{jl} + sigma_im SA^{km} + sigma_ij SG^{jk} (eq. C6);
+ * upper: the sums of the blocks row <= col only, the rest their adjoints. */
 static void plane_contract(const mfs_disp_plan *dp, const raw_sums *ps, const mfs_plane_state *st,
-                           double complex *K, double complex *M)
+                           int upper, double complex *K, double complex *M)
 {
   const int n = dp->nbr;
   const double *t = dp->euler2 ? st->a : st->A, *sg = st->sigma;
   for (int rb = 0; rb < dp->nb; rb++)
-    for (int cb = 0; cb < dp->nb; cb++) {
+    for (int cb = upper ? rb : 0; cb < dp->nb; cb++) {
       const double complex *A = ps->s + (rb * dp->nb + cb) * 9, *G = A + 4;
       for (int i = 0; i < 2; i++)
         for (int k = 0; k < 2; k++) {
@@ -618,6 +639,8 @@ static void plane_contract(const mfs_disp_plan *dp, const raw_sums *ps, const mf
           M[(rb * 2 + i) * n + cb * 2 + k] = i == k ? A[8] : 0.0;
         }
     }
+  if (upper)
+    lower_adjoint(n, 2, K, M);
 }
 
 /* The scalar operator's coefficients at stress sbar: K = ca A + cg G. */
@@ -637,16 +660,21 @@ static void scalar_coef(const mfs_disp_plan *dp, double sbar, double *ca, double
   }
 }
 
-/* K and M (nbr x nbr) of the scalar operator from the sums. */
+/* K and M (nbr x nbr) of the scalar operator from the sums (upper: as
+ * plane_contract). */
 static void scalar_contract(const mfs_disp_plan *dp, const raw_sums *ps, double ca, double cg,
-                            double complex *K, double complex *M)
+                            int upper, double complex *K, double complex *M)
 {
   const int nb = dp->nb;
   for (int b = 0; b < nb * nb; b++) {
+    if (upper && b / nb > b % nb)
+      continue;
     const double complex *s = ps->s + b * 3;
     K[b] = CMPLX(ca * creal(s[0]) + cg * creal(s[1]), ca * cimag(s[0]) + cg * cimag(s[1]));
     M[b] = s[2];
   }
+  if (upper)
+    lower_adjoint(nb, 1, K, M);
 }
 
 static int same_stretch(const mfs_disp_plan *dp, const mfs_plane_state *s)
@@ -662,7 +690,7 @@ mfs_status mfs_disp_symbols_state(const mfs_disp_plan *dp, const mfs_plane_state
     return MFS_EINVAL;
   raw_sums ps;
   plane_sum(dp, k, &ps);
-  plane_contract(dp, &ps, s, K, M);
+  plane_contract(dp, &ps, s, 0, K, M);
   return MFS_OK;
 }
 
@@ -714,114 +742,201 @@ static inline mfs_status solve1(double complex K, double complex M, int herm, do
   return isfinite(creal(*omega2)) && isfinite(cimag(*omega2)) ? MFS_OK : MFS_EDOMAIN;
 }
 
-/* The eigenvalues of a Hermitian n x n matrix, n <= 4, ascending: the
- * triangle c >= r of A (row-major; the rest is not read) reduced by
- * Householder reflections to a real symmetric tridiagonal one (the moduli of
- * the complex subdiagonal: a diagonal unitary similarity), then the implicit
- * QL iteration with Wilkinson's shift (EISPACK's tql1; LAPACK's zhegv does
- * the same two steps, zhetrd and dsterf).  A fixed-size kernel: no call,
- * no workspace, no threads (zhegv's calls into the threaded BLAS cost 20
- * times the arithmetic at this size).  0, or -1 if an eigenvalue takes more
- * than 30 iterations (not seen: the iteration converges cubically). */
-static int herm_small_eigvals(int n, const double complex *A, double *w)
+/* The eigenvalues of Hermitian n x n matrices, n <= 4, ascending, given by
+ * their real and imaginary parts (row-major; the triangle c >= r is read):
+ * each reduced by Householder reflections to a real symmetric tridiagonal one
+ * (the moduli of the complex subdiagonal: a diagonal unitary similarity),
+ * then the implicit QL iteration with Wilkinson's shift (EISPACK's tql1;
+ * LAPACK's zhegv does the same two steps, zhetrd and dsterf).  Fixed-size
+ * kernels in real arithmetic: no call, no workspace, no threads (zhegv's calls
+ * into the threaded BLAS cost 20 times the arithmetic at this size), no
+ * complex multiplication (C's has a NaN-recovery branch per product), no
+ * hypot (the entries are neither huge nor tiny: the symbols are O(1) to
+ * O(1e4)). */
+#if defined(__GNUC__)
+#define HERM_INLINE __attribute__((always_inline)) inline /* n a constant where called */
+#else
+#define HERM_INLINE inline
+#endif
+
+static HERM_INLINE void herm_tridiag(int n, const double *Ar, const double *Ai, double *d,
+                                     double *e)
 {
-  double complex B[16];
-  double d[4], e[4] = {0.0, 0.0, 0.0, 0.0};
-  for (int r = 0; r < n; r++)
-    for (int c = r; c < n; c++) {
-      B[r * n + c] = A[r * n + c];
-      B[c * n + r] = conj(A[r * n + c]);
+  double br[16], bi[16];
+  for (int i = 0; i < 4; i++)
+    e[i] = 0.0;
+  for (int r = 0; r < n; r++) {
+    br[r * n + r] = Ar[r * n + r];
+    bi[r * n + r] = 0.0;
+    for (int c = r + 1; c < n; c++) {
+      br[r * n + c] = br[c * n + r] = Ar[r * n + c];
+      bi[r * n + c] = Ai[r * n + c];
+      bi[c * n + r] = -Ai[r * n + c];
     }
-  for (int r = 0; r < n; r++)
-    B[r * n + r] = creal(B[r * n + r]);
+  }
   for (int k = 0; k + 2 < n; k++) {
     /* x = B[k+1..n)[k]; H = I - tau v v^H maps it to alpha e_1, |alpha| = |x| */
-    double xn2 = 0.0, tail = 0.0;
-    for (int i = k + 1; i < n; i++) {
-      double a2 = creal(B[i * n + k]) * creal(B[i * n + k]) + cimag(B[i * n + k]) * cimag(B[i * n + k]);
-      xn2 += a2;
-      tail += i > k + 1 ? a2 : 0.0;
-    }
-    double complex x0 = B[(k + 1) * n + k];
-    double ax0 = cabs(x0), xn = sqrt(xn2);
+    double tail = 0.0;
+    for (int i = k + 2; i < n; i++)
+      tail += br[i * n + k] * br[i * n + k] + bi[i * n + k] * bi[i * n + k];
+    const double x0r = br[(k + 1) * n + k], x0i = bi[(k + 1) * n + k];
+    const double a2 = x0r * x0r + x0i * x0i, ax0 = sqrt(a2), xn = sqrt(a2 + tail);
     e[k] = xn;
     if (tail == 0.0) /* already tridiagonal in this column */
       continue;
-    double complex ph = ax0 > 0.0 ? x0 / ax0 : 1.0, v[4], p[4];
-    v[k + 1] = ph * (ax0 + xn);
-    for (int i = k + 2; i < n; i++)
-      v[i] = B[i * n + k];
+    double vr[4], vi[4], pr[4], pi[4];
+    const double phr = ax0 > 0.0 ? x0r / ax0 : 1.0, phi = ax0 > 0.0 ? x0i / ax0 : 0.0;
+    vr[k + 1] = phr * (ax0 + xn);
+    vi[k + 1] = phi * (ax0 + xn);
+    for (int i = k + 2; i < n; i++) {
+      vr[i] = br[i * n + k];
+      vi[i] = bi[i * n + k];
+    }
     const double tau = 1.0 / (xn * (xn + ax0)); /* 2 / |v|^2 */
     /* B <- H B H on the trailing block: p = tau B v, q = p - (tau/2)(v^H p) v,
      * B -= v q^H + q v^H */
-    double complex vp = 0.0;
+    double vp = 0.0;
     for (int i = k + 1; i < n; i++) {
-      double complex t = 0.0;
-      for (int j = k + 1; j < n; j++)
-        t += B[i * n + j] * v[j];
-      p[i] = tau * t;
-      vp += conj(v[i]) * p[i];
+      double tr = 0.0, ti = 0.0;
+      for (int j = k + 1; j < n; j++) {
+        tr += br[i * n + j] * vr[j] - bi[i * n + j] * vi[j];
+        ti += br[i * n + j] * vi[j] + bi[i * n + j] * vr[j];
+      }
+      pr[i] = tau * tr;
+      pi[i] = tau * ti;
+      vp += vr[i] * pr[i] + vi[i] * pi[i];
     }
-    const double half = 0.5 * tau * creal(vp);
+    const double half = 0.5 * tau * vp;
+    for (int i = k + 1; i < n; i++) {
+      pr[i] -= half * vr[i];
+      pi[i] -= half * vi[i];
+    }
     for (int i = k + 1; i < n; i++)
-      p[i] -= half * v[i];
-    for (int i = k + 1; i < n; i++)
-      for (int j = k + 1; j < n; j++)
-        B[i * n + j] -= v[i] * conj(p[j]) + p[i] * conj(v[j]);
+      for (int j = k + 1; j < n; j++) {
+        br[i * n + j] -= (vr[i] * pr[j] + vi[i] * pi[j]) + (pr[i] * vr[j] + pi[i] * vi[j]);
+        bi[i * n + j] -= (vi[i] * pr[j] - vr[i] * pi[j]) + (pi[i] * vr[j] - pr[i] * vi[j]);
+      }
   }
   for (int i = 0; i < n; i++)
-    d[i] = creal(B[i * n + i]);
-  if (n >= 2)
-    e[n - 2] = cabs(B[(n - 1) * n + n - 2]);
+    d[i] = br[i * n + i];
+  if (n >= 2) {
+    const double xr = br[(n - 1) * n + n - 2], xi = bi[(n - 1) * n + n - 2];
+    e[n - 2] = sqrt(xr * xr + xi * xi);
+  }
   e[n - 1] = 0.0;
-  /* implicit QL: e[i] couples d[i] and d[i + 1] */
-  for (int l = 0; l < n; l++) {
-    int m, iter = 0;
-    do {
+}
+
+enum { HERM_LANES = 8 }; /* matrices per call of herm_small_eigvals */
+
+/* QL on the tridiagonal d[4 p ..], e[4 p ..] of np <= HERM_LANES matrices in
+ * turn, one iteration of each at a time: the iterations of different
+ * matrices are independent (their square roots and divisions overlap, where
+ * one matrix's chain of them waits on each), and each matrix sees the same
+ * operations in the same order as alone.  bad[p]: an eigenvalue took more
+ * than 30 iterations (not seen: the iteration converges cubically). */
+static HERM_INLINE void tql_lanes(int n, int np, double *D, double *E, int *bad)
+{
+  int L[HERM_LANES], it[HERM_LANES], live = np;
+  for (int p = 0; p < np; p++) {
+    L[p] = it[p] = bad[p] = 0;
+    E[4 * p + n - 1] = 0.0;
+  }
+  while (live > 0) {
+    live = 0;
+    for (int p = 0; p < np; p++) {
+      const int l = L[p];
+      if (l >= n)
+        continue;
+      double *d = D + 4 * p, *e = E + 4 * p; /* e[i] couples d[i] and d[i + 1] */
+      int m;
       for (m = l; m < n - 1; m++)
         if (fabs(e[m]) <= DBL_EPSILON * (fabs(d[m]) + fabs(d[m + 1])))
           break;
-      if (m == l)
-        break;
-      if (iter++ == 30)
-        return -1;
-      double g = (d[l + 1] - d[l]) / (2.0 * e[l]), r = sqrt(g * g + 1.0); /* |g| < 1 / eps */
-      g = d[m] - d[l] + e[l] / (g + copysign(r, g));
-      double s = 1.0, c = 1.0, p = 0.0;
+      live++;
+      if (m == l) { /* d[l] has converged */
+        L[p]++;
+        it[p] = 0;
+        continue;
+      }
+      if (m == l + 1) { /* a 2 x 2 block: its eigenvalues in closed form (LAPACK's dlae2) */
+        const double sm = d[l] + d[m], df = d[l] - d[m], tb = 2.0 * e[l];
+        const double rt = sqrt(df * df + tb * tb), big = fabs(d[l]) > fabs(d[m]) ? d[l] : d[m];
+        const double sml = fabs(d[l]) > fabs(d[m]) ? d[m] : d[l];
+        double r1 = 0.5 * (sm < 0.0 ? sm - rt : sm + rt), r2;
+        if (sm == 0.0) {
+          r1 = 0.5 * rt;
+          r2 = -0.5 * rt;
+        } else {
+          r2 = (big / r1) * sml - (e[l] / r1) * e[l];
+        }
+        d[l] = r1;
+        d[m] = r2;
+        e[l] = 0.0;
+        continue;
+      }
+      if (it[p]++ == 30) {
+        bad[p] = 1;
+        L[p] = n;
+        continue;
+      }
+      /* Wilkinson's shift d[l] - e^2 / (h + sign(h) sqrt(h^2 + e^2)), h = (d[l + 1] - d[l]) / 2 */
+      const double h = 0.5 * (d[l + 1] - d[l]), el = e[l];
+      double g = d[m] - d[l] + el * el / (h + copysign(sqrt(h * h + el * el), h)), r;
+      double s = 1.0, c = 1.0, q = 0.0;
       int i;
       for (i = m - 1; i >= l; i--) {
         double f = s * e[i], b = c * e[i];
         e[i + 1] = r = sqrt(f * f + g * g); /* no hypot: the symbols are O(1) to O(1e4) */
         if (r == 0.0) { /* split: deflate and start again */
-          d[i + 1] -= p;
+          d[i + 1] -= q;
           e[m] = 0.0;
           break;
         }
-        s = f / r;
-        c = g / r;
-        g = d[i + 1] - p;
+        const double ir = 1.0 / r;
+        s = f * ir;
+        c = g * ir;
+        g = d[i + 1] - q;
         r = (d[i] - g) * s + 2.0 * c * b;
-        p = s * r;
-        d[i + 1] = g + p;
+        q = s * r;
+        d[i + 1] = g + q;
         g = c * r - b;
       }
       if (r == 0.0 && i >= l)
         continue;
-      d[l] -= p;
+      d[l] -= q;
       e[l] = g;
       e[m] = 0.0;
-    } while (m != l);
+    }
   }
-  for (int i = 1; i < n; i++) { /* insertion sort */
-    double t = d[i];
-    int j = i;
-    for (; j > 0 && d[j - 1] > t; j--)
-      d[j] = d[j - 1];
-    d[j] = t;
+}
+
+/* The eigenvalues w[4 p ..] of the np <= HERM_LANES matrices Ar[16 p ..],
+ * Ai[16 p ..]; bad[p] as tql_lanes. */
+static void herm_small_eigvals(int n, int np, const double *Ar, const double *Ai, double *w,
+                               int *bad)
+{
+  double D[4 * HERM_LANES], E[4 * HERM_LANES];
+  if (n == 4) { /* the four branches of two particles in plane strain: unrolled */
+    for (int p = 0; p < np; p++)
+      herm_tridiag(4, Ar + 16 * p, Ai + 16 * p, D + 4 * p, E + 4 * p);
+    tql_lanes(4, np, D, E, bad);
+  } else {
+    for (int p = 0; p < np; p++)
+      herm_tridiag(n, Ar + 16 * p, Ai + 16 * p, D + 4 * p, E + 4 * p);
+    tql_lanes(n, np, D, E, bad);
   }
-  for (int i = 0; i < n; i++)
-    w[i] = d[i];
-  return 0;
+  for (int p = 0; p < np; p++) {
+    double *d = D + 4 * p;
+    for (int i = 1; i < n; i++) { /* insertion sort */
+      double t = d[i];
+      int j = i;
+      for (; j > 0 && d[j - 1] > t; j--)
+        d[j] = d[j - 1];
+      d[j] = t;
+    }
+    for (int i = 0; i < n; i++)
+      w[4 * p + i] = d[i];
+  }
 }
 
 /* A diagonal mass with real positive entries (the lumped masses). */
@@ -833,6 +948,22 @@ static int diagonal_mass(int n, const double complex *M)
                  : M[r * n + c] != 0.0)
         return 0;
   return 1;
+}
+
+/* M^-1/2 K M^-1/2 of a diagonal mass M, Hermitian, into Ar, Ai: the
+ * triangle zhegv reads below ('L' of the column-major array: c >= r here). */
+static void herm_scaled(int n, const double complex *K, const double complex *M, double *Ar,
+                        double *Ai)
+{
+  double is[4];
+  for (int r = 0; r < n; r++)
+    is[r] = 1.0 / sqrt(creal(M[r * n + r]));
+  for (int r = 0; r < n; r++)
+    for (int c = r; c < n; c++) {
+      const double q = is[r] * is[c];
+      Ar[r * n + c] = creal(K[r * n + c]) * q;
+      Ai[r * n + c] = cimag(K[r * n + c]) * q;
+    }
 }
 
 /* The generalized eigenvalues of K v = omega^2 M v (n x n), sorted by real
@@ -875,16 +1006,11 @@ static mfs_status eig_solve(int n, double complex *K, double complex *M, int her
     return MFS_OK;
   }
   if (herm && n <= 4 && diagonal_mass(n, M)) {
-    /* M^-1/2 K M^-1/2, Hermitian: the triangle zhegv reads below ('L' of the
-     * column-major array: c >= r here) */
-    double complex A[16];
-    double sq[4], wr[4];
-    for (int r = 0; r < n; r++)
-      sq[r] = sqrt(creal(M[r * n + r]));
-    for (int r = 0; r < n; r++)
-      for (int c = r; c < n; c++)
-        A[r * n + c] = K[r * n + c] / (sq[r] * sq[c]);
-    if (herm_small_eigvals(n, A, wr) != 0)
+    double Ar[16], Ai[16], wr[4]; /* M^-1/2 K M^-1/2; ray_block: the same over a block */
+    int bad;
+    herm_scaled(n, K, M, Ar, Ai);
+    herm_small_eigvals(n, 1, Ar, Ai, wr, &bad);
+    if (bad)
       return MFS_EDOMAIN;
     for (int i = 0; i < n; i++) {
       if (!isfinite(wr[i]))
@@ -943,6 +1069,7 @@ static int hermitian(const mfs_disp_plan *dp)
  * operation is elementwise, so a point's value does not depend on the other
  * points of its block. */
 enum { BLK = 8 };
+_Static_assert((int)BLK <= (int)HERM_LANES, "a block's Hermitian problems go to herm_small_eigvals at once");
 
 /* The block kernels are compiled twice where the compiler can dispatch at run
  * time (GCC on x86-64 Linux: ifunc), for SSE2 and for AVX2 without FMA: the
@@ -1227,16 +1354,14 @@ static mfs_status stress_at(const mfs_disp_plan *dp, double sbar, disp_stress *s
   return MFS_OK;
 }
 
-/* omega^2 from the sums at one stress. */
-static mfs_status solve_at(const mfs_disp_plan *dp, const raw_sums *ps, const disp_stress *s,
-                           int herm, double complex *omega2)
+/* K and M from the sums at one stress. */
+static void contract_at(const mfs_disp_plan *dp, const raw_sums *ps, const disp_stress *s,
+                        double complex *K, double complex *M)
 {
-  double complex K[16], M[16];
   if (dp->plane)
-    plane_contract(dp, ps, &s->ps, K, M);
+    plane_contract(dp, ps, &s->ps, dp->upper, K, M);
   else
-    scalar_contract(dp, ps, s->ca, s->cg, K, M);
-  return eig_solve(dp->nbr, K, M, herm, omega2);
+    scalar_contract(dp, ps, s->ca, s->cg, dp->upper, K, M);
 }
 
 /* Imaginary parts are needed unless the problem is one Hermitian branch. */
@@ -1289,6 +1414,126 @@ static void note_fail(first_fail *f, mfs_status st, size_t s, size_t i)
     *f = (first_fail){.st = st, .s = s, .i = i};
 }
 
+/* Two Hermitian branches with a diagonal mass (one particle in plane strain,
+ * two anti-plane), over the lanes of a block: plane_contract or
+ * scalar_contract and eig_solve's closed form, the same operations in the
+ * same order on each point, without the copies and the general paths.  0 if
+ * a point of the block needs them (a mass not real and positive, a coupling
+ * mass): then the caller takes the block point by point. */
+static int herm2_lanes(const mfs_disp_plan *dp, int np, const size_t *idx, const double *re,
+                       const double *im, const disp_stress *s, size_t si, double complex *w,
+                       first_fail *first)
+{
+  double a[BLK], d[BLK], kr[BLK], ki[BLK], m0[BLK], m1[BLK];
+  int ok = 1;
+  if (dp->plane) { /* K_ik = A_ijkl SA^{jl} (Lagrangian: hermitian()), M = SM I */
+    if (dp->nb != 1 || dp->euler2)
+      return 0;
+    const double *t = s->ps.A;
+    for (int p = 0; p < np; p++) {
+      double k00 = 0.0, k11 = 0.0, r01 = 0.0, i01 = 0.0;
+      for (int j = 0; j < 2; j++)
+        for (int l = 0; l < 2; l++) {
+          const double ar = re[(j * 2 + l) * BLK + p], ai = im[(j * 2 + l) * BLK + p];
+          k00 += t[P4(0, j, 0, l)] * ar;
+          k11 += t[P4(1, j, 1, l)] * ar;
+          r01 += t[P4(0, j, 1, l)] * ar;
+          i01 += t[P4(0, j, 1, l)] * ai;
+        }
+      m0[p] = m1[p] = re[8 * BLK + p];
+      ok = ok && im[8 * BLK + p] == 0.0 && m0[p] > 0.0;
+      a[p] = k00;
+      d[p] = k11;
+      kr[p] = r01;
+      ki[p] = i01;
+    }
+  } else { /* K = ca SA + cg SG, M = SM, of the blocks (0,0), (0,1), (1,1) */
+    if (dp->nb != 2)
+      return 0;
+    const double ca = s->ca, cg = s->cg;
+    for (int p = 0; p < np; p++) {
+      a[p] = ca * re[0 * BLK + p] + cg * re[1 * BLK + p];
+      kr[p] = ca * re[3 * BLK + p] + cg * re[4 * BLK + p];
+      ki[p] = ca * im[3 * BLK + p] + cg * im[4 * BLK + p];
+      d[p] = ca * re[9 * BLK + p] + cg * re[10 * BLK + p];
+      m0[p] = re[2 * BLK + p];
+      m1[p] = re[11 * BLK + p];
+      ok = ok && im[2 * BLK + p] == 0.0 && im[11 * BLK + p] == 0.0 && re[5 * BLK + p] == 0.0 &&
+           im[5 * BLK + p] == 0.0 && m0[p] > 0.0 && m1[p] > 0.0;
+    }
+  }
+  if (!ok)
+    return 0;
+  for (int p = 0; p < np; p++) { /* eig_solve's closed form */
+    const double ap = a[p] / m0[p], dp2 = d[p] / m1[p], h = 0.5 * (ap - dp2);
+    const double k2 = kr[p] * kr[p] + ki[p] * ki[p];
+    const double r = sqrt(h * h + k2 / (m0[p] * m1[p]));
+    double complex *wp = w + idx[p] * 2;
+    if (isfinite(r) && isfinite(ap + dp2)) {
+      wp[0] = 0.5 * (ap + dp2) - r;
+      wp[1] = 0.5 * (ap + dp2) + r;
+    } else {
+      wp[0] = wp[1] = CMPLX(NAN, NAN);
+      note_fail(first, MFS_EDOMAIN, si, idx[p]);
+    }
+  }
+  return 1;
+}
+
+/* Four Hermitian branches with a diagonal mass (two particles in plane
+ * strain), over the lanes of a block: plane_contract's triangle c >= r, scaled
+ * as herm_scaled, the same operations in the same order on each point, then
+ * herm_small_eigvals on them all.  0 if a point of the block needs the
+ * general path (a mass not real and positive, a coupling mass). */
+static int herm4_lanes(const mfs_disp_plan *dp, int np, const size_t *idx, const double *re,
+                       const double *im, const disp_stress *s, size_t si, double complex *w,
+                       first_fail *first)
+{
+  if (!dp->plane || dp->nb != 2 || dp->euler2)
+    return 0;
+  double Ar[16 * HERM_LANES], Ai[16 * HERM_LANES], wb[4 * HERM_LANES];
+  int bad[HERM_LANES], ok = 1;
+  const double *t = s->ps.A;
+  for (int p = 0; p < np; p++) { /* the masses: blocks (0,0), (1,1) real positive, (0,1) zero */
+    const double ma = re[8 * BLK + p], mb = re[(3 * 9 + 8) * BLK + p];
+    ok = ok && ma > 0.0 && mb > 0.0 && im[8 * BLK + p] == 0.0 && im[(3 * 9 + 8) * BLK + p] == 0.0 &&
+         re[(9 + 8) * BLK + p] == 0.0 && im[(9 + 8) * BLK + p] == 0.0;
+  }
+  if (!ok)
+    return 0;
+  for (int p = 0; p < np; p++) {
+    double is[4];
+    is[0] = is[1] = 1.0 / sqrt(re[8 * BLK + p]);
+    is[2] = is[3] = 1.0 / sqrt(re[(3 * 9 + 8) * BLK + p]);
+    double *ar = Ar + 16 * p, *ai = Ai + 16 * p;
+    for (int r = 0; r < 4; r++)
+      for (int c = r; c < 4; c++) {
+        const int i = r & 1, k = c & 1, c0 = ((r >> 1) * 2 + (c >> 1)) * 9;
+        double vr = 0.0, vi = 0.0;
+        for (int j = 0; j < 2; j++)
+          for (int l = 0; l < 2; l++) {
+            vr += t[P4(i, j, k, l)] * re[(c0 + j * 2 + l) * BLK + p];
+            vi += t[P4(i, j, k, l)] * im[(c0 + j * 2 + l) * BLK + p];
+          }
+        const double q = is[r] * is[c];
+        ar[r * 4 + c] = vr * q;
+        ai[r * 4 + c] = vi * q;
+      }
+  }
+  herm_small_eigvals(4, np, Ar, Ai, wb, bad);
+  for (int p = 0; p < np; p++) {
+    double complex *wp = w + idx[p] * 4;
+    int fin = !bad[p];
+    for (int k = 0; k < 4; k++)
+      fin = fin && isfinite(wb[4 * p + k]);
+    for (int k = 0; k < 4; k++)
+      wp[k] = fin ? CMPLX(wb[4 * p + k], 0.0) : CMPLX(NAN, NAN);
+    if (!fin)
+      note_fail(first, MFS_EDOMAIN, si, idx[p]);
+  }
+  return 1;
+}
+
 /* Evaluate the points idx[0..np) of phases ph1, ph2, all of one form (vers),
  * at the stresses at[0..ns) (of stress index s0 on), into omega2 (the ray's
  * layout, stresses ld apart); failures noted in *first. */
@@ -1325,16 +1570,45 @@ static void ray_block(const mfs_disp_plan *dp, int np, const size_t *idx, const 
       }
       continue;
     }
+    if (herm && nb == 2 && herm2_lanes(dp, np, idx, re, im, at + q, s0 + q,
+                                       omega2 + (s0 + q) * ld, first))
+      continue;
+    if (herm && nb == 4 && herm4_lanes(dp, np, idx, re, im, at + q, s0 + q,
+                                       omega2 + (s0 + q) * ld, first))
+      continue;
+    /* eig_solve point by point, but the Hermitian problems of more than two
+     * branches with a diagonal mass (its herm_small_eigvals) together */
+    double Ar[16 * HERM_LANES], Ai[16 * HERM_LANES], wb[4 * HERM_LANES];
+    int lane[HERM_LANES], bad[HERM_LANES], nl = 0;
     for (int p = 0; p < np; p++) {
-      double complex *w = omega2 + (s0 + q) * ld + idx[p] * (size_t)nb;
+      double complex *w = omega2 + (s0 + q) * ld + idx[p] * (size_t)nb, K[16], M[16];
       raw_sums ps;
       block_sums(dp, re, im, p, &ps);
-      mfs_status e = solve_at(dp, &ps, at + q, herm, w);
+      contract_at(dp, &ps, at + q, K, M);
+      mfs_status e = MFS_OK;
+      if (herm && nb > 2 && diagonal_mass(nb, M)) {
+        herm_scaled(nb, K, M, Ar + 16 * nl, Ai + 16 * nl);
+        lane[nl++] = p;
+      } else {
+        e = eig_solve(nb, K, M, herm, w);
+      }
       if (e != MFS_OK) {
         for (int k = 0; k < nb; k++)
           w[k] = CMPLX(NAN, NAN);
         note_fail(first, e, s0 + q, idx[p]);
       }
+    }
+    if (nl > 0)
+      herm_small_eigvals(nb, nl, Ar, Ai, wb, bad);
+    for (int b = 0; b < nl; b++) {
+      double complex *w = omega2 + (s0 + q) * ld + idx[lane[b]] * (size_t)nb;
+      int fin = !bad[b];
+      for (int k = 0; k < nb; k++)
+        fin = fin && isfinite(wb[4 * b + k]);
+      for (int k = 0; k < nb; k++)
+        w[k] = fin ? CMPLX(wb[4 * b + k], 0.0) : CMPLX(NAN, NAN);
+      if (!fin)
+        note_fail(first, MFS_EDOMAIN, s0 + q, idx[lane[b]]);
     }
   }
 }
@@ -1508,7 +1782,7 @@ mfs_status mfs_disp_sample_omega2(const mfs_disp_sample *s, size_t i, const mfs_
   if (i >= s->nk || !same_stretch(s->pl, st))
     return MFS_EINVAL;
   double complex K[16], M[16];
-  plane_contract(s->pl, s->s + i, st, K, M);
+  plane_contract(s->pl, s->s + i, st, s->pl->upper, K, M);
   return eig_solve(s->pl->nbr, K, M, hermitian(s->pl), omega2);
 }
 
