@@ -94,7 +94,8 @@ mfs_quad *mfs_quad_empty(int dim, size_t cap)
 /* Appends one point. */
 static void put(mfs_quad *q, const double *x, double w, int node)
 {
-  memcpy(q->x + q->n * q->dim, x, q->dim * sizeof *x);
+  for (int k = 0; k < q->dim; k++) /* dim <= 3: inline, not a call of memcpy per point */
+    q->x[q->n * q->dim + k] = x[k];
   q->w[q->n] = w;
   q->node[q->n] = node;
   q->n++;
