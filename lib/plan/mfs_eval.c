@@ -72,6 +72,24 @@ int mfs_eval_gather(mfs_eval *ev, const double *x, const double *xp, const doubl
   const int dim = ev->ctx.dim;
   const double a2 = ev->ctx.a * ev->ctx.a;
   int k = 0, s = -1;
+  if (dim == 2 && !ev->box->periodic) { /* the common case, unrolled: the same operations */
+    const double x0 = x[0], x1 = x[1];
+    double *d = ev->d, *v = ev->v;
+    for (size_t c = 0; c < nc; c++) {
+      const int J = cand[c];
+      const double d0 = xp[2 * (size_t)J] - x0, d1 = xp[2 * (size_t)J + 1] - x1;
+      if (!ev->within && !(d0 * d0 + d1 * d1 < a2))
+        continue;
+      d[2 * k] = d0;
+      d[2 * k + 1] = d1;
+      v[k] = vol ? vol[J] : 0.0;
+      s = J == self ? k : s;
+      idx[k++] = J;
+    }
+    ev->nn = k;
+    ev->self = s;
+    return k;
+  }
   for (size_t c = 0; c < nc; c++) {
     int J = cand[c];
     double *dj = ev->d + (size_t)k * dim;
