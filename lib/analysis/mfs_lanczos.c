@@ -149,13 +149,13 @@ mfs_status mfs_lanczos_max(const mfs_pencil *P, const mfs_lanczos_opts *opts, do
     MFS_OMP("omp parallel num_threads(nt) if (par)")
     {
       if (!have_y) {
-        MFS_OMP("omp for schedule(static)")
+        MFS_OMP("omp for schedule(dynamic, 1)")
         for (int t = 0; t < NB; t++)
           mfs_symop_block(&A, t, q, y);
       }
       MFS_OMP("omp master")
       t1 = wall();
-      MFS_OMP("omp for schedule(static)")
+      MFS_OMP("omp for schedule(dynamic, 1)")
       for (int t = 0; t < NB; t++)
         pass_vectors(&A, t, y, q, qp, beta, have_y, sums[t]);
     }
@@ -177,7 +177,7 @@ mfs_status mfs_lanczos_max(const mfs_pencil *P, const mfs_lanczos_opts *opts, do
     double b2 = w2 - 2.0 * alpha * alpha + alpha * alpha * q2;
     int exact = !(b2 > 1e-2 * w2);
     if (exact) {
-      MFS_OMP("omp parallel for schedule(static) num_threads(nt) if (par)")
+      MFS_OMP("omp parallel for schedule(dynamic, 1) num_threads(nt) if (par)")
       for (int t = 0; t < NB; t++) {
         size_t lo = (size_t)A.b * A.cut[t], hi = (size_t)A.b * A.cut[t + 1];
         double sw = 0.0;
@@ -209,7 +209,7 @@ mfs_status mfs_lanczos_max(const mfs_pencil *P, const mfs_lanczos_opts *opts, do
     }
     st = MFS_ENOCONV;
     double ib = 1.0 / beta;
-    MFS_OMP("omp parallel for schedule(static) num_threads(nt) if (par)")
+    MFS_OMP("omp parallel for schedule(dynamic, 1) num_threads(nt) if (par)")
     for (int t = 0; t < NB; t++) {
       size_t lo = (size_t)A.b * A.cut[t], hi = (size_t)A.b * A.cut[t + 1];
       if (exact)
