@@ -193,15 +193,15 @@ static int built(int st, mfs_symop *A, int *idx, int **idxp)
 #ifdef SYMOP_V2D
 static SYMOP_INLINE void pair_scaled(const double *restrict v0, const double *restrict v1,
                                      const double *restrict s, const double *restrict x0,
-                                     int has_s, int has_x, v2d s0v, v2d s1v, double *restrict a,
-                                     v2d *ys, int nt_store)
+                                     size_t c, int has_s, int has_x, v2d s0v, v2d s1v,
+                                     double *restrict a, v2d *ys, int nt_store)
 {
   v2d r0, r1;
   memcpy(&r0, v0, sizeof r0);
   memcpy(&r1, v1, sizeof r1);
   if (has_s) {
     v2d t;
-    memcpy(&t, s, sizeof t);
+    memcpy(&t, s + c, sizeof t);
     r0 = s0v * r0 * t;
     r1 = s1v * r1 * t;
   }
@@ -217,7 +217,7 @@ static SYMOP_INLINE void pair_scaled(const double *restrict v0, const double *re
   }
   if (has_x) {
     v2d xv, p0, p1;
-    memcpy(&xv, x0, sizeof xv);
+    memcpy(&xv, x0 + c, sizeof xv);
     p0 = r0 * xv;
     p1 = r1 * xv;
     /* (p0[0] + p0[1], p1[0] + p1[1]) */
@@ -227,18 +227,18 @@ static SYMOP_INLINE void pair_scaled(const double *restrict v0, const double *re
 #else
 static SYMOP_INLINE void pair_scaled(const double *restrict v0, const double *restrict v1,
                                      const double *restrict s, const double *restrict x0,
-                                     int has_s, int has_x, double s0, double s1,
+                                     size_t c, int has_s, int has_x, double s0, double s1,
                                      double *restrict a, double ys[2], int nt_store)
 {
   (void)nt_store;
-  double t0 = has_s ? s[0] : 1.0, t1 = has_s ? s[1] : 1.0;
+  double t0 = has_s ? s[c] : 1.0, t1 = has_s ? s[c + 1] : 1.0;
   a[0] = has_s ? s0 * v0[0] * t0 : v0[0];
   a[1] = has_s ? s0 * v0[1] * t1 : v0[1];
   a[2] = has_s ? s1 * v1[0] * t0 : v1[0];
   a[3] = has_s ? s1 * v1[1] * t1 : v1[1];
   if (has_x) {
-    ys[0] += a[0] * x0[0] + a[1] * x0[1];
-    ys[1] += a[2] * x0[0] + a[3] * x0[1];
+    ys[0] += a[0] * x0[c] + a[1] * x0[c + 1];
+    ys[1] += a[2] * x0[c] + a[3] * x0[c + 1];
   }
 }
 #endif
@@ -275,10 +275,10 @@ static SYMOP_INLINE size_t fill_row2(const int *restrict k0, const int *restrict
   d[0] = d[1] = d[2] = d[3] = 0.0; /* (no diagonal block stored: zeros) */
   for (; p < lo; p++) { /* left of the diagonal: y0's terms only */
     int ci = k0[2 * p];
-    size_t c = (size_t)ci;
+    size_t c = (size_t)(ci & ~1); /* even: in bounds when the form is not kept */
     b |= (ci & 1) | (k0[2 * p + 1] != ci + 1) | (ci <= prev);
     prev = ci;
-    pair_scaled(v0 + 2 * p, v1 + 2 * p, s + c, x0 + c, has_s, has_x, s0v, s1v, t, SYMOP_YS, 0);
+    pair_scaled(v0 + 2 * p, v1 + 2 * p, s, x0, c, has_s, has_x, s0v, s1v, t, SYMOP_YS, 0);
     if (c == 2 * bi) { /* the diagonal block from its upper triangle */
       d[0] = t[0];
       d[1] = d[2] = t[1];
@@ -288,10 +288,10 @@ static SYMOP_INLINE size_t fill_row2(const int *restrict k0, const int *restrict
   size_t end = (size_t)-1; /* the column after the run being written */
   for (; p < np; p++, a += 4) {
     int ci = k0[2 * p];
-    size_t c = (size_t)ci, bj = c / 2;
+    size_t c = (size_t)(ci & ~1), bj = c / 2;
     b |= (ci & 1) | (k0[2 * p + 1] != ci + 1) | (ci <= prev);
     prev = ci;
-    pair_scaled(v0 + 2 * p, v1 + 2 * p, s + c, x0 + c, has_s, has_x, s0v, s1v, a, SYMOP_YS,
+    pair_scaled(v0 + 2 * p, v1 + 2 * p, s, x0, c, has_s, has_x, s0v, s1v, a, SYMOP_YS,
                 stream);
     if (bj != end || bj == top)
       run[q++] = (mfs_symop_run){.col = (int)bj, .len = 1};
