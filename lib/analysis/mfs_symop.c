@@ -42,7 +42,8 @@ typedef long long v2d_i __attribute__((vector_size(16)));
  * bytes ahead: K's 4 KB pages end the hardware's streams, and the product's
  * short runs (4.5 blocks on the plane-strain lattice) left it below the
  * bandwidth (bench_lambda 316, one thread: the product's fastest of 60 went
- * from 4.3 to 3.4 ms with it, the same for 4, 8 and 16 KB ahead). */
+ * from 4.2-4.4 to 3.4-3.5 ms with it, the same for 4, 8 and 16 KB ahead; the
+ * medians, at loads of 2-3, did not change). */
 #define SYMOP_FILL_AHEAD 4
 #define SYMOP_AHEAD 8192
 static inline void prefetch_range(const void *p, size_t ahead, size_t bytes)
