@@ -5,7 +5,9 @@
  * stop early), against ARPACK (mfs_eig_max at 1e-12) and dense LAPACK on
  * finite models, both storages (scalar and 2 x 2 blocks, sorted pairs and
  * the general path), the reported error estimate against the true error,
- * bad input, and the same bits with 1 and 2 threads. */
+ * bad input, and the same bits with 1 and 2 threads; the stored operator
+ * (lib/analysis/mfs_symop) of the 2 x 2 fill against the general build of
+ * the same matrix, its first product against K's rows. */
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
@@ -15,6 +17,7 @@
 #endif
 
 #include "check.h"
+#include "mfs_symop.h"
 #include "mfstab.h"
 
 /* K = diag(sqrt m) (L (x) B) diag(sqrt m): L the Laplacian of order nl (1D)
@@ -277,11 +280,160 @@ static void threads(void)
 #endif
 }
 
+/* Two stored operators hold the same bits (sizes, cuts, bands, row
+ * pointers, runs, values, diagonal blocks). */
+static int symop_same(const mfs_symop *a, const mfs_symop *b)
+{
+  if (a->n != b->n || a->nb != b->nb || a->b != b->b || a->stored != b->stored ||
+      a->runs != b->runs || memcmp(a->cut, b->cut, sizeof a->cut) ||
+      memcmp(a->zoff, b->zoff, sizeof a->zoff))
+    return 0;
+  size_t bb = (size_t)(a->b * a->b);
+  return !memcmp(a->ptr, b->ptr, (a->nb + 1) * sizeof *a->ptr) &&
+         !memcmp(a->rptr, b->rptr, (a->nb + 1) * sizeof *a->rptr) &&
+         !memcmp(a->run, b->run, a->runs * sizeof *a->run) &&
+         !memcmp(a->val, b->val, a->stored * sizeof *a->val) &&
+         !memcmp(a->diag, b->diag, a->nb * bb * sizeof *a->diag);
+}
+
+/* K with each row's entries in reverse (descending columns): the same
+ * matrix, which the 2 x 2 fill declines (the general build then runs). */
+static mfs_csr *reversed(const mfs_csr *K)
+{
+  size_t n = K->nrow;
+  mfs_csr *R = mfs_csr_alloc(n, K->ncol, K->ptr[n]);
+  if (!R)
+    return NULL;
+  for (size_t r = 0; r <= n; r++)
+    R->ptr[r] = K->ptr[r];
+  for (size_t r = 0; r < n; r++)
+    for (size_t e = K->ptr[r], f = K->ptr[r + 1]; e < K->ptr[r + 1]; e++) {
+      R->idx[--f] = K->idx[e];
+      R->val[f] = K->val[e];
+    }
+  return R;
+}
+
+/* The 2 x 2 fill of K (sorted pairs: one pass that also writes the runs,
+ * the bands and the first product) against the general build of the same
+ * matrix with its rows reversed (the fill declines it): the same operator,
+ * bit for bit, with and without the scaling s, with 1 and 2 threads (par:
+ * the build's loops on the threads however small); the first product y0 =
+ * A x0 from the fill and the product of the stored operator against
+ * diag(s) K diag(s) x0 summed from K's rows here.  want_runs, want_band:
+ * the runs and band buffer entries expected (0: not checked). */
+static void symop_compare(const mfs_csr *K, const double *s, const char *what, size_t want_runs,
+                          size_t want_band)
+{
+  size_t n = K->nrow;
+  double *x = malloc(n * sizeof *x), *y0 = malloc(n * sizeof *y0), *y1 = malloc(n * sizeof *y1),
+         *y2 = malloc(n * sizeof *y2);
+  mfs_csr *R = reversed(K);
+  CHECK(x && y0 && y1 && y2 && R, "%s: allocation", what);
+  if (x && y0 && y1 && y2 && R) {
+    for (size_t i = 0; i < n; i++)
+      x[i] = sin(0.731 * (double)i + 0.3);
+    int keep = 1;
+#ifdef _OPENMP
+    keep = omp_get_max_threads();
+#endif
+    for (int sc = 0; sc < 2; sc++)
+      for (int nt = 1; nt <= 2; nt++) {
+#ifdef _OPENMP
+        omp_set_num_threads(nt);
+#endif
+        const double *ss = sc ? s : NULL;
+        mfs_symop A = {0}, G = {0};
+        int hy = 0, hg = 0;
+        int st = mfs_symop_build(K, ss, x, y0, nt, 1, &A, &hy);
+        int sg = mfs_symop_build(R, ss, NULL, NULL, nt, 1, &G, &hg);
+        CHECK(st == MFS_OK && sg == MFS_OK && hy == 1 && hg == 0 && A.b == 2 && G.b == 2,
+              "%s (scaled %d, %d threads): status %d %d, first product %d %d, block %d %d", what,
+              sc, nt, st, sg, hy, hg, A.b, G.b);
+        if (st == MFS_OK && sg == MFS_OK) {
+          CHECK(symop_same(&A, &G),
+                "%s (scaled %d, %d threads): the 2 x 2 fill and the general build differ "
+                "(stored %zu %zu, runs %zu %zu, band %zu %zu)", what, sc, nt, A.stored, G.stored,
+                A.runs, G.runs, A.zoff[8], G.zoff[8]);
+          CHECK((!want_runs || A.runs == want_runs) && (!want_band || A.zoff[8] == want_band),
+                "%s (scaled %d, %d threads): %zu runs, band %zu; want %zu, %zu", what, sc, nt,
+                A.runs, A.zoff[8], want_runs, want_band);
+          mfs_symop_apply(&A, x, y1);
+          mfs_symop_apply(&G, x, y2);
+          CHECK(memcmp(y1, y2, n * sizeof *y1) == 0, "%s (scaled %d, %d threads): products differ",
+                what, sc, nt);
+          double e0 = 0.0, e1 = 0.0, ny = 0.0;
+          for (size_t r = 0; r < n; r++) { /* y = diag(s) K diag(s) x from K's rows */
+            double acc = 0.0, sr = ss ? ss[r] : 1.0;
+            for (size_t e = K->ptr[r]; e < K->ptr[r + 1]; e++) {
+              size_t c = (size_t)K->idx[e];
+              acc += sr * K->val[e] * (ss ? ss[c] : 1.0) * x[c];
+            }
+            e0 = fmax(e0, fabs(y0[r] - acc));
+            e1 = fmax(e1, fabs(y1[r] - acc));
+            ny = fmax(ny, fabs(acc));
+          }
+          CHECK(e0 <= 1e-13 * ny && e1 <= 1e-13 * ny,
+                "%s (scaled %d, %d threads): first product off by %.3g, product by %.3g "
+                "(max |y| %.3g)", what, sc, nt, e0, e1, ny);
+        }
+        mfs_symop_free(&A);
+        mfs_symop_free(&G);
+      }
+#ifdef _OPENMP
+    omp_set_num_threads(keep);
+#endif
+  }
+  free(x);
+  free(y0);
+  free(y1);
+  free(y2);
+  mfs_csr_free(R);
+}
+
+/* symop_compare on L (x) B of 300 x 300 nodes (the upper neighbours +1 and
+ * +300: one block each, never consecutive; 8 row blocks whose bands, but
+ * block 7's, reach 300 block columns beyond their ends) and on a plane
+ * strain model of 60 x 57 nodes (cubic MLS: runs of several blocks, some
+ * cut at the row blocks' ends). */
+static void symop_paths(void)
+{
+  const double B[4] = {2.385, -0.731, -0.731, 1.19};
+  const int nl = 300;
+  size_t n = (size_t)nl * (size_t)nl * 2;
+  double *m = masses(n), *s = malloc(n * sizeof *s);
+  mfs_csr *K = kron(nl, 2, 2, B, m, 0);
+  CHECK(m && s && K, "symop: allocation");
+  if (m && s && K) {
+    for (size_t i = 0; i < n; i++)
+      s[i] = 1.0 / sqrt(m[i]);
+    symop_compare(K, s, "symop L (x) B", 2 * (size_t)nl * (size_t)(nl - 1), 2 * 7 * (size_t)nl);
+  }
+  free(m);
+  free(s);
+  mfs_csr_free(K);
+  mfs_model_spec sp = spec(2, 60, MFS_PHYS_PLANE_STRAIN);
+  mfs_status st;
+  mfs_model *md = mfs_model_alloc(&sp, &st, NULL);
+  CHECK(md != NULL, "symop model: %s", mfs_strerror(st));
+  if (!md)
+    return;
+  double *sm = malloc(md->n * sizeof *sm);
+  CHECK(sm != NULL, "symop model: allocation");
+  for (size_t i = 0; sm && i < md->n; i++)
+    sm[i] = 1.0 / sqrt(md->m[i]);
+  if (sm)
+    symop_compare(md->K, sm, "symop plane strain 60 x 57", 0, 0);
+  free(sm);
+  mfs_model_free(md);
+}
+
 int main(void)
 {
   closed_forms();
   models();
   bad_input();
   threads();
+  symop_paths();
   return check_summary("test_lanczos");
 }

@@ -13,7 +13,8 @@
 #   environment: REPS (default 5), TOL (default 1e-6), OUT (default
 #   notebooks-data/bench_lambda.csv), CERTIFY (1: the certified step every
 #   repetition, default 1), BEFORE (a second bench_lambda binary, e.g. of the
-#   previous commit, run alternating with tool name mfstab-before),
+#   previous commit, run alternating with tool names mfstab-before (ARPACK) and
+#   mfstab-lanczos-before (plain Lanczos)),
 #   MFS_BENCH_GBS_1 / MFS_BENCH_GBS_2 (the bandwidth of 1 and 2 threads, GB/s;
 #   default: analysis/bench/run.sh's notebooks-data/bench_bandwidth.csv if
 #   present, else measured by each run), MFS_BENCH_GFLOPS (the certified
@@ -69,7 +70,7 @@ run_c() { # run_c BINARY TOOLNAME THREADS ARGS...: rows with the load appended
   gbs=$GBS1
   [ "$t" = 2 ] && gbs=$GBS2
   MFS_BENCH_GBS=$gbs OMP_NUM_THREADS=$t "$bin" "$@" |
-    sed -e "s/^mfstab,/$name,/" -e "s/\$/,$l/" >> "$tmpout"
+    sed -e "s/^mfstab,/$name,/" -e "s/^mfstab-lanczos,/$name,/" -e "s/\$/,$l/" >> "$tmpout"
 }
 
 for n in "${SIDES[@]}"; do
@@ -95,7 +96,11 @@ EOF
     for t in 1 2; do
       run_c "$BL" mfstab "$t" "$n" "$n" --tol "$TOL" --ref "$ref" --rep "$r"
       run_c "$BL" mfstab-lanczos "$t" "$n" "$n" --tol "$TOL" --ref "$ref" --rep "$r" --lanczos
-      [ -n "${BEFORE:-}" ] && run_c "$BEFORE" mfstab-before "$t" "$n" "$n" --tol "$TOL" --ref "$ref" --rep "$r"
+      if [ -n "${BEFORE:-}" ]; then
+        run_c "$BEFORE" mfstab-before "$t" "$n" "$n" --tol "$TOL" --ref "$ref" --rep "$r"
+        run_c "$BEFORE" mfstab-lanczos-before "$t" "$n" "$n" --tol "$TOL" --ref "$ref" --rep "$r" \
+          --lanczos
+      fi
     done
     l=$(load)
     LD_LIBRARY_PATH=$SERIAL OMP_NUM_THREADS=1 $PY - "$work/m_A.npz" "$TOL" "$ref" "$r" "$n" "${GBS1:-0}" "$l" >> "$tmpout" <<'EOF'

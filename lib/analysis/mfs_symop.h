@@ -43,6 +43,8 @@ typedef struct {
   size_t cut[MFS_SYMOP_BLOCKS + 1];  /* block t: block rows cut[t] .. cut[t+1]-1 */
   size_t zoff[MFS_SYMOP_BLOCKS + 1]; /* block t's band buffer (scalar): z[zoff[t] .. zoff[t+1]-1] */
   double *z;
+  void *mem;           /* the 2 x 2 build's one block holding val, diag and rptr (NULL: each
+                          its own allocation) */
 } mfs_symop;
 
 /* Builds A from the symmetric K (both triangles stored) and s (n; NULL:
