@@ -1449,6 +1449,61 @@ MFS_CLONES static void phase_table(int np, const double *ph, int mmax, int vers,
 enum { FOLD_TAB = 64 }; /* phase tables on the stack up to |m| = 64; beyond, a sincos per offset */
 enum { OCHUNK = 32 };   /* offsets whose phases are formed at a time */
 
+/* acc[k BLK + p] += sum_q w[q ld + k] x[q][p] for k < K (a constant where
+ * inlined: the K BLK accumulators stay in registers over the offsets), the
+ * offsets q in order. */
+static MFS_INLINE void acc_lanes(const int K, int no, const double *w, int ld,
+                                 const double *const *x, double *acc)
+{
+#ifdef HERM4_VEC /* in vectors (GCC keeps the arrays below in memory) */
+  v4d a[4][BLK / 4];
+  for (int k = 0; k < K; k++)
+    for (int h = 0; h < BLK / 4; h++)
+      memcpy(&a[k][h], acc + k * BLK + 4 * h, sizeof a[k][h]);
+  for (int q = 0; q < no; q++) {
+    const double *wq = w + q * ld;
+    for (int h = 0; h < BLK / 4; h++) {
+      v4d xh; /* one load of four lanes (a copy of the array goes by halves) */
+      memcpy(&xh, x[q] + 4 * h, sizeof xh);
+      for (int k = 0; k < K; k++)
+        a[k][h] += wq[k] * xh;
+    }
+  }
+  for (int k = 0; k < K; k++)
+    for (int h = 0; h < BLK / 4; h++)
+      memcpy(acc + k * BLK + 4 * h, &a[k][h], sizeof a[k][h]);
+#else
+  double a[4 * BLK];
+  for (int k = 0; k < K; k++)
+    for (int p = 0; p < BLK; p++)
+      a[k * BLK + p] = acc[k * BLK + p];
+  for (int q = 0; q < no; q++) {
+    const double *xq = x[q], *wq = w + q * ld;
+    for (int k = 0; k < K; k++)
+      for (int p = 0; p < BLK; p++)
+        a[k * BLK + p] += wq[k] * xq[p];
+  }
+  for (int k = 0; k < K; k++)
+    for (int p = 0; p < BLK; p++)
+      acc[k * BLK + p] = a[k * BLK + p];
+#endif
+}
+
+/* acc_lanes over n components, four at a time. */
+static MFS_INLINE void acc_all(int n, int no, const double *w, int ld, const double *const *x,
+                               double *acc)
+{
+  int c = 0;
+  for (; c + 4 <= n; c += 4)
+    acc_lanes(4, no, w + c, ld, x, acc + c * BLK);
+  if (n - c >= 2) {
+    acc_lanes(2, no, w + c, ld, x, acc + c * BLK);
+    c += 2;
+  }
+  if (n - c == 1)
+    acc_lanes(1, no, w + c, ld, x, acc + c * BLK);
+}
+
 /* The folded sums of L wave vectors (L = 1 or BLK, a constant where it is
  * inlined, so that the accumulators stay in registers), of phases ph1 =
  * k.a1, ph2 = k.a2 (1D: ph2 = 0), all long waves (vers: every phase of the
@@ -1498,15 +1553,17 @@ static MFS_INLINE void fold_lanes(const mfs_disp_plan *dp, const int L, const do
         const double *a = x1 + i * BLK, *sa = s1 + i * BLK;
         const double *b = x2 + (FOLD_TAB + j) * BLK, *sb = s2 + (FOLD_TAB + j) * BLK;
         if (vers)
-          for (int p = 0; p < L; p++) {
+          for (int p = 0; p < L; p++)
             Xq[p] = (a[p] + b[p]) - (a[p] * b[p] - sa[p] * sb[p]);
-            Sq[p] = (sa[p] + sb[p]) - (sa[p] * b[p] + a[p] * sb[p]);
-          }
         else
-          for (int p = 0; p < L; p++) {
+          for (int p = 0; p < L; p++)
             Xq[p] = a[p] * b[p] - sa[p] * sb[p];
+        if (na > 0 && vers) /* the sines only where imaginary parts are kept */
+          for (int p = 0; p < L; p++)
+            Sq[p] = (sa[p] + sb[p]) - (sa[p] * b[p] + a[p] * sb[p]);
+        else if (na > 0)
+          for (int p = 0; p < L; p++)
             Sq[p] = sa[p] * b[p] + a[p] * sb[p];
-          }
       }
     }
     /* the sums over the chunk's offsets in order: one lane a component at a
@@ -1527,20 +1584,8 @@ static MFS_INLINE void fold_lanes(const mfs_disp_plan *dp, const int L, const do
         acca[c * BLK] = acc;
       }
     } else {
-      for (int q = 0; q < no; q++) {
-        for (int c = 0; c < ns; c++) {
-          const double w = sy[q * ns + c];
-#pragma GCC unroll 1
-          for (int p = 0; p < BLK; p++)
-            accs[c * BLK + p] += w * Xp[q][p];
-        }
-        for (int c = 0; c < na; c++) {
-          const double w = an[q * dp->nanti + c];
-#pragma GCC unroll 1
-          for (int p = 0; p < BLK; p++)
-            acca[c * BLK + p] += w * Sp[q][p];
-        }
-      }
+      acc_all(ns, no, sy, ns, Xp, accs);
+      acc_all(na, no, an, dp->nanti, Sp, acca);
     }
   }
   /* Re = c0 - sum sym vers (long waves) or c(0) + sum sym cos; the
