@@ -1742,9 +1742,9 @@ static void note_fail(first_fail *f, mfs_status st, size_t s, size_t i)
  * same order on each point, without the copies and the general paths.  0 if
  * a point of the block needs them (a mass not real and positive, a coupling
  * mass): then the caller takes the block point by point. */
-static int herm2_lanes(const mfs_disp_plan *dp, int np, const size_t *idx, const double *re,
-                       const double *im, const disp_stress *s, size_t si, double complex *w,
-                       first_fail *first)
+MFS_CLONES static int herm2_lanes(const mfs_disp_plan *dp, int np, const size_t *idx,
+                                  const double *re, const double *im, const disp_stress *s,
+                                  size_t si, double complex *w, first_fail *first)
 {
   double a[BLK], d[BLK], kr[BLK], ki[BLK], m0[BLK], m1[BLK];
   int ok = 1;
@@ -1805,11 +1805,12 @@ static int herm2_lanes(const mfs_disp_plan *dp, int np, const size_t *idx, const
 /* Four Hermitian branches with a diagonal mass (two particles in plane
  * strain), over the lanes of a block: plane_contract's triangle c >= r, scaled
  * as herm_scaled, the same operations in the same order on each point, then
- * herm_small_eigvals on them all.  0 if a point of the block needs the
- * general path (a mass not real and positive, a coupling mass). */
-static int herm4_lanes(const mfs_disp_plan *dp, int np, const size_t *idx, const double *re,
-                       const double *im, const disp_stress *s, size_t si, double complex *w,
-                       first_fail *first)
+ * herm4_eigvals on them all (plain C: herm_small_eigvals).  0 if a point of
+ * the block needs the general path (a mass not real and positive, a coupling
+ * mass).  Compiled for SSE2 and AVX2 as the sums (the same bits). */
+MFS_CLONES static int herm4_lanes(const mfs_disp_plan *dp, int np, const size_t *idx,
+                                  const double *re, const double *im, const disp_stress *s,
+                                  size_t si, double complex *w, first_fail *first)
 {
   if (!dp->plane || dp->nb != 2 || dp->euler2)
     return 0;
