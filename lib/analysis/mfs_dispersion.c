@@ -947,7 +947,7 @@ typedef long long v4i __attribute__((vector_size(32)));
 #include <emmintrin.h>
 #endif
 
-static MFS_INLINE v4d v4_sqrt(v4d x)
+static HERM_INLINE v4d v4_sqrt(v4d x)
 {
 #if defined(__SSE2__) /* the SSE2 instruction on each half (the base version) */
   union {
@@ -976,7 +976,7 @@ static __attribute__((target("avx2"))) inline v4d v4_sqrt_avx(v4d x)
 }
 #endif
 
-static MFS_INLINE v4d v4_sqrtv(v4d x, const int avx)
+static HERM_INLINE v4d v4_sqrtv(v4d x, const int avx)
 {
 #ifdef HERM4_AVX2
   if (avx)
@@ -987,12 +987,12 @@ static MFS_INLINE v4d v4_sqrtv(v4d x, const int avx)
   return v4_sqrt(x);
 }
 
-static MFS_INLINE v4d v4_sel(v4i m, v4d a, v4d b) /* m ? a : b, lane by lane */
+static HERM_INLINE v4d v4_sel(v4i m, v4d a, v4d b) /* m ? a : b, lane by lane */
 {
   return (v4d)(((v4i)a & m) | ((v4i)b & ~m));
 }
 
-static MFS_INLINE v4d v4_abs(v4d x)
+static HERM_INLINE v4d v4_abs(v4d x)
 {
   const v4i sign = (v4i)(v4d){-0.0, -0.0, -0.0, -0.0};
   return (v4d)((v4i)x & ~sign);
@@ -1001,7 +1001,7 @@ static MFS_INLINE v4d v4_abs(v4d x)
 /* One Jacobi rotation in the plane (p, q) of lanes whose mask f is clear:
  * B = J^T A J with J = [c s; -s c] on rows and columns p, q, which zeroes
  * a_pq; r, s the two other indices (a_rp, a_rq, a_sp, a_sq). */
-static MFS_INLINE void v4_rot(v4d *app, v4d *aqq, v4d *apq, v4d *arp, v4d *arq, v4d *asp,
+static HERM_INLINE void v4_rot(v4d *app, v4d *aqq, v4d *apq, v4d *arp, v4d *arq, v4d *asp,
                               v4d *asq, v4i f, const int avx)
 {
   const v4d one = {1.0, 1.0, 1.0, 1.0}, zero = {0.0, 0.0, 0.0, 0.0};
@@ -1028,7 +1028,7 @@ enum { JACOBI_SWEEPS = 12 }; /* the test passes after 3 to 5 sweeps (quadratic c
 /* Four matrices: upper triangles ar[(r 4 + c) stride + p], ai likewise, lanes
  * p0 .. p0 + 3, to real symmetric tridiagonals a[] = a00 a11 a22 a33 a01 a02
  * a03 a12 a13 a23 (a02 = a03 = a13 = 0). */
-static MFS_INLINE void herm4_tridiag(const double *ar, const double *ai, int p0, int stride,
+static HERM_INLINE void herm4_tridiag(const double *ar, const double *ai, int p0, int stride,
                                      v4d *a, const int avx)
 {
   v4d br[16], bi[16];
@@ -1091,7 +1091,7 @@ static MFS_INLINE void herm4_tridiag(const double *ar, const double *ai, int p0,
 /* Jacobi on the two groups of four lanes at once (their chains of square
  * roots and divisions overlap): a[g][] as herm4_tridiag's; the diagonals
  * converge to the eigenvalues (unsorted); done[g] the lanes whose test passed. */
-static MFS_INLINE void herm4_jacobi(v4d (*a)[10], v4i *done, const int avx)
+static HERM_INLINE void herm4_jacobi(v4d (*a)[10], v4i *done, const int avx)
 {
   const double tol2 = DBL_EPSILON * DBL_EPSILON / 9.0;
   for (int sweep = 0;; sweep++) {
@@ -1125,7 +1125,7 @@ static MFS_INLINE void herm4_jacobi(v4d (*a)[10], v4i *done, const int avx)
   }
 }
 
-static MFS_INLINE void herm4_body(const double *ar, const double *ai, double *w, int *bad,
+static HERM_INLINE void herm4_body(const double *ar, const double *ai, double *w, int *bad,
                                   const int avx)
 {
   v4d a[2][10];
