@@ -253,11 +253,12 @@ static void long_waves(void)
 }
 
 /* The Hermitian solves (lumped mass: the closed 2 x 2 form, the 4 x 4 kernel
- * of Householder and QL) against LAPACK's zheev of M^-1/2 K M^-1/2 from the
- * direct symbols, to 1e-14 of the scale: at kappa = 0 (the rigid modes: a
+ * of Householder and Jacobi) against LAPACK's zheev of M^-1/2 K M^-1/2 from
+ * the direct symbols, to 4e-15 of the scale (seen: 1.2e-15; the Jacobi test
+ * stops at eps / 3 of the Frobenius norm): at kappa = 0 (the rigid modes: a
  * double root at 0 in plane strain), along the symmetric directions theta = 0,
- * pi/4, pi/2 where branches cross (double roots), and across the zone and
- * beyond it. */
+ * pi/4, pi/2 where branches cross (double roots; there the tridiagonal
+ * splits), and across the zone and beyond it. */
 static void hermitian_solves(void)
 {
   const mfs_frame L = MFS_FRAME_LAGRANGIAN;
@@ -310,11 +311,11 @@ static void hermitian_solves(void)
       for (int i = 0; i < NKH * n; i++) {
         diff = fmax(diff, cabs(w[i] - ref[i]));
         if (i < rigid) /* kappa = 0: the rigid translations (the optical branches are not 0) */
-          CHECK(fabs(creal(w[i])) <= 1e-14 * scale, "%s: theta %g, kappa 0: omega^2 %g of %g",
+          CHECK(fabs(creal(w[i])) <= 4e-15 * scale, "%s: theta %g, kappa 0: omega^2 %g of %g",
                 cs[c].what, ths[t], creal(w[i]), scale);
       }
       worst = fmax(worst, diff / scale);
-      CHECK(diff <= 1e-14 * scale, "%s: theta %g: against zheev %.3g of the scale %.3g",
+      CHECK(diff <= 4e-15 * scale, "%s: theta %g: against zheev %.3g of the scale %.3g",
             cs[c].what, ths[t], diff / scale, scale);
     }
     printf("  %-44s Hermitian solve vs zheev %.2g\n", cs[c].what, worst);

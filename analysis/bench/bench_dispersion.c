@@ -7,7 +7,7 @@
  *   2d-plane     the same in plane strain (nu = 0.25): 2 branches (2 x 2 closed form)
  *   2d-star      anti-plane, stress-star (two particles per cell): 2 branches (the same)
  *   2d-star-plane plane strain, stress-star: 4 branches (the library's 4 x 4 Hermitian
- *                kernel, Householder and QL; the direct phase: LAPACKE zhegv)
+ *                kernel, Householder and Jacobi; the direct phase: LAPACKE zhegv)
  * Phases, each timed over --repeat runs (min, median, max of the wall time):
  *   direct        the symbols summed term by term, a sincos per lattice offset
  *                 (mfs_disp_symbols, the evaluator before issue 14) and the same

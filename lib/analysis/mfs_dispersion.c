@@ -910,12 +910,302 @@ static HERM_INLINE void tql_lanes(int n, int np, double *D, double *E, int *bad)
   }
 }
 
+/* The block kernels are compiled twice where the compiler can dispatch at run
+ * time (GCC on x86-64 Linux: ifunc), for SSE2 and for AVX2 without FMA: the
+ * same additions and multiplications, each rounded the same way, so the two
+ * give the same bits, AVX2 with twice the lanes per instruction. */
+#if defined(__GNUC__) && !defined(__clang__) && defined(__x86_64__) && defined(__linux__) && \
+  !defined(MFS_NO_CLONES)
+#define MFS_CLONES __attribute__((target_clones("avx2", "default")))
+#define MFS_INLINE __attribute__((always_inline)) inline /* into each clone */
+#else
+#define MFS_CLONES
+#define MFS_INLINE inline
+#endif
+
+/* The eigenvalues of 4 x 4 Hermitian matrices, HERM_LANES at a time, in
+ * GCC's and Clang's vector types of four lanes (plain C compilers: the QL
+ * kernel above, matrix by matrix): the same Householder reduction to a real
+ * tridiagonal as herm_tridiag, without branches (a column already reduced:
+ * tau = 0), then cyclic Jacobi rotations (Rutishauser's; Golub and Van Loan
+ * 8.5) in the parallel order {(0,1),(2,3)}, {(0,2),(1,3)}, {(0,3),(1,2)},
+ * until the off-diagonal part is below eps/3 of the Frobenius norm: the
+ * eigenvalues to a few eps of the norm (backward stable; double roots, the
+ * crossings and kappa = 0 included), every lane the same operations (QL's
+ * shifts, splits and deflations branch per matrix: 65% of the ray's time
+ * went to mispredictions and to the chain of its square roots).  A lane
+ * whose test passed does no more rotations (t = 0: the identity exactly),
+ * so a matrix gets the same bits whatever the other lanes hold. */
+#if defined(__GNUC__)
+#define HERM4_VEC 1
+/* v4d only in functions inlined into each clone: no ABI crosses (GCC warns at
+ * the end of the file, so to its end) */
+#pragma GCC diagnostic ignored "-Wpsabi"
+typedef double v4d __attribute__((vector_size(32)));
+typedef long long v4i __attribute__((vector_size(32)));
+#if defined(__SSE2__)
+#include <emmintrin.h>
+#endif
+
+static HERM_INLINE v4d v4_sqrt(v4d x)
+{
+#if defined(__SSE2__) /* the SSE2 instruction on each half (the base version) */
+  union {
+    v4d v;
+    __m128d h[2];
+  } u = {.v = x};
+  u.h[0] = _mm_sqrt_pd(u.h[0]);
+  u.h[1] = _mm_sqrt_pd(u.h[1]);
+  return u.v;
+#else
+  return (v4d){sqrt(x[0]), sqrt(x[1]), sqrt(x[2]), sqrt(x[3])};
+#endif
+}
+
+/* AVX's square root where the kernel is compiled for AVX2 (herm4_eigvals'
+ * two versions): one costs about half of the two SSE2 ones here (measured:
+ * 3.2 against 5.9 ns of throughput for four lanes); target_clones cannot
+ * choose an intrinsic per clone, hence the two versions by hand */
+#if defined(__GNUC__) && !defined(__clang__) && defined(__x86_64__) && defined(__linux__) && \
+  !defined(MFS_NO_CLONES)
+#define HERM4_AVX2 1
+#include <immintrin.h>
+static __attribute__((target("avx2"))) inline v4d v4_sqrt_avx(v4d x)
+{
+  return (v4d)_mm256_sqrt_pd((__m256d)x);
+}
+#endif
+
+static HERM_INLINE v4d v4_sqrtv(v4d x, const int avx)
+{
+#ifdef HERM4_AVX2
+  if (avx)
+    return v4_sqrt_avx(x);
+#else
+  (void)avx;
+#endif
+  return v4_sqrt(x);
+}
+
+static HERM_INLINE v4d v4_sel(v4i m, v4d a, v4d b) /* m ? a : b, lane by lane */
+{
+  return (v4d)(((v4i)a & m) | ((v4i)b & ~m));
+}
+
+static HERM_INLINE v4d v4_abs(v4d x)
+{
+  const v4i sign = (v4i)(v4d){-0.0, -0.0, -0.0, -0.0};
+  return (v4d)((v4i)x & ~sign);
+}
+
+/* One Jacobi rotation in the plane (p, q) of lanes whose mask f is clear:
+ * B = J^T A J with J = [c s; -s c] on rows and columns p, q, which zeroes
+ * a_pq; r, s the two other indices (a_rp, a_rq, a_sp, a_sq). */
+static HERM_INLINE void v4_rot(v4d *app, v4d *aqq, v4d *apq, v4d *arp, v4d *arq, v4d *asp,
+                              v4d *asq, v4i f, const int avx)
+{
+  const v4d one = {1.0, 1.0, 1.0, 1.0}, zero = {0.0, 0.0, 0.0, 0.0};
+  const v4d h = *aqq - *app, a = *apq;
+  const v4d rho = v4_sqrtv(h * h + 4.0 * a * a, avx), den = v4_abs(h) + rho;
+  const v4i sg = (v4i)(v4d){-0.0, -0.0, -0.0, -0.0}, live = (den > zero) & ~f;
+  /* t = tan theta = 2 a sign(h) / (|h| + rho), c = cos theta = sqrt((|h| + rho) / (2 rho))
+   * (1 / sqrt(1 + t^2), by one square root after the division instead of
+   * two operations), s = t c; the identity where den = 0 (a = h = 0) or frozen */
+  const v4d t = v4_sel(live, (v4d)((v4i)(2.0 * a) ^ ((v4i)h & sg)) / den, zero);
+  const v4d c = v4_sel(live, v4_sqrtv(den / (2.0 * rho), avx), one), s = t * c;
+  *app -= t * a;
+  *aqq += t * a;
+  *apq = v4_sel(f, a, zero);
+  const v4d rp = *arp, rq = *arq, sp = *asp, sq = *asq;
+  *arp = c * rp - s * rq;
+  *arq = s * rp + c * rq;
+  *asp = c * sp - s * sq;
+  *asq = s * sp + c * sq;
+}
+
+enum { JACOBI_SWEEPS = 12 }; /* the test passes after 3 to 5 sweeps (quadratic convergence) */
+
+/* Four matrices: upper triangles ar[(r 4 + c) stride + p], ai likewise, lanes
+ * p0 .. p0 + 3, to real symmetric tridiagonals a[] = a00 a11 a22 a33 a01 a02
+ * a03 a12 a13 a23 (a02 = a03 = a13 = 0). */
+static HERM_INLINE void herm4_tridiag(const double *ar, const double *ai, int p0, int stride,
+                                     v4d *a, const int avx)
+{
+  v4d br[16], bi[16];
+  for (int r = 0; r < 4; r++)
+    for (int c = r; c < 4; c++) {
+      v4d x, y;
+      memcpy(&x, ar + (r * 4 + c) * stride + p0, sizeof x);
+      memcpy(&y, ai + (r * 4 + c) * stride + p0, sizeof y);
+      br[r * 4 + c] = br[c * 4 + r] = x;
+      bi[r * 4 + c] = y;
+      bi[c * 4 + r] = -y;
+    }
+  const v4d zero = {0.0, 0.0, 0.0, 0.0}, one = {1.0, 1.0, 1.0, 1.0};
+  v4d e[3];
+  for (int k = 0; k < 2; k++) { /* herm_tridiag's reflections, tau = 0 where tail = 0 */
+    v4d tail = zero;
+    for (int i = k + 2; i < 4; i++)
+      tail += br[i * 4 + k] * br[i * 4 + k] + bi[i * 4 + k] * bi[i * 4 + k];
+    const v4d x0r = br[(k + 1) * 4 + k], x0i = bi[(k + 1) * 4 + k];
+    const v4d a2 = x0r * x0r + x0i * x0i, ax0 = v4_sqrtv(a2, avx), xn = v4_sqrtv(a2 + tail, avx);
+    e[k] = xn;
+    const v4i nz = ax0 > zero;
+    const v4d phr = v4_sel(nz, x0r / ax0, one), phi = v4_sel(nz, x0i / ax0, zero);
+    const v4d tau = v4_sel(tail > zero, one / (xn * (xn + ax0)), zero);
+    v4d vr[4], vi[4], pr[4], pi[4];
+    vr[k + 1] = phr * (ax0 + xn);
+    vi[k + 1] = phi * (ax0 + xn);
+    for (int i = k + 2; i < 4; i++) {
+      vr[i] = br[i * 4 + k];
+      vi[i] = bi[i * 4 + k];
+    }
+    v4d vp = zero;
+    for (int i = k + 1; i < 4; i++) {
+      v4d tr = zero, ti = zero;
+      for (int j = k + 1; j < 4; j++) {
+        tr += br[i * 4 + j] * vr[j] - bi[i * 4 + j] * vi[j];
+        ti += br[i * 4 + j] * vi[j] + bi[i * 4 + j] * vr[j];
+      }
+      pr[i] = tau * tr;
+      pi[i] = tau * ti;
+      vp += vr[i] * pr[i] + vi[i] * pi[i];
+    }
+    const v4d half = 0.5 * tau * vp;
+    for (int i = k + 1; i < 4; i++) {
+      pr[i] -= half * vr[i];
+      pi[i] -= half * vi[i];
+    }
+    for (int i = k + 1; i < 4; i++)
+      for (int j = k + 1; j < 4; j++) {
+        br[i * 4 + j] -= (vr[i] * pr[j] + vi[i] * pi[j]) + (pr[i] * vr[j] + pi[i] * vi[j]);
+        bi[i * 4 + j] -= (vi[i] * pr[j] - vr[i] * pi[j]) + (pi[i] * vr[j] - pr[i] * vi[j]);
+      }
+  }
+  e[2] = v4_sqrtv(br[3 * 4 + 2] * br[3 * 4 + 2] + bi[3 * 4 + 2] * bi[3 * 4 + 2], avx);
+  const v4d zero4 = zero;
+  a[0] = br[0], a[1] = br[5], a[2] = br[10], a[3] = br[15];
+  a[4] = e[0], a[5] = zero4, a[6] = zero4, a[7] = e[1], a[8] = zero4, a[9] = e[2];
+}
+
+/* Jacobi on the two groups of four lanes at once (their chains of square
+ * roots and divisions overlap): a[g][] as herm4_tridiag's; the diagonals
+ * converge to the eigenvalues (unsorted); done[g] the lanes whose test passed. */
+static HERM_INLINE void herm4_jacobi(v4d (*a)[10], v4i *done, const int avx)
+{
+  const double tol2 = DBL_EPSILON * DBL_EPSILON / 9.0;
+  for (int sweep = 0;; sweep++) {
+    int all = 1;
+    for (int g = 0; g < 2; g++) {
+      const v4d *x = a[g];
+      const v4d off = (x[4] * x[4] + x[5] * x[5]) + (x[6] * x[6] + x[7] * x[7]) +
+                      (x[8] * x[8] + x[9] * x[9]);
+      const v4d fro = (x[0] * x[0] + x[1] * x[1]) + (x[2] * x[2] + x[3] * x[3]) + 2.0 * off;
+      done[g] = off <= tol2 * fro;
+      all = all && (done[g][0] & done[g][1] & done[g][2] & done[g][3]);
+    }
+    if (sweep == JACOBI_SWEEPS || all)
+      break;
+    /* a[] = a00 a11 a22 a33 a01 a02 a03 a12 a13 a23 */
+    for (int g = 0; g < 2; g++) {
+      v4d *x = a[g];
+      v4_rot(x + 0, x + 1, x + 4, x + 5, x + 7, x + 6, x + 8, done[g], avx); /* (0,1): rows 2, 3 */
+      v4_rot(x + 2, x + 3, x + 9, x + 5, x + 6, x + 7, x + 8, done[g], avx); /* (2,3): rows 0, 1 */
+    }
+    for (int g = 0; g < 2; g++) {
+      v4d *x = a[g];
+      v4_rot(x + 0, x + 2, x + 5, x + 4, x + 7, x + 6, x + 9, done[g], avx); /* (0,2): rows 1, 3 */
+      v4_rot(x + 1, x + 3, x + 8, x + 4, x + 6, x + 7, x + 9, done[g], avx); /* (1,3): rows 0, 2 */
+    }
+    for (int g = 0; g < 2; g++) {
+      v4d *x = a[g];
+      v4_rot(x + 0, x + 3, x + 6, x + 4, x + 8, x + 5, x + 9, done[g], avx); /* (0,3): rows 1, 2 */
+      v4_rot(x + 1, x + 2, x + 7, x + 4, x + 5, x + 8, x + 9, done[g], avx); /* (1,2): rows 0, 3 */
+    }
+  }
+}
+
+static HERM_INLINE void herm4_body(const double *ar, const double *ai, double *w, int *bad,
+                                  const int avx)
+{
+  v4d a[2][10];
+  v4i done[2];
+  herm4_tridiag(ar, ai, 0, HERM_LANES, a[0], avx);
+  herm4_tridiag(ar, ai, 4, HERM_LANES, a[1], avx);
+  herm4_jacobi(a, done, avx);
+  for (int g = 0; g < 2; g++) {
+    for (int i = 0; i < 4; i++)
+      memcpy(w + i * HERM_LANES + 4 * g, a[g] + i, sizeof a[g][i]);
+    for (int l = 0; l < 4; l++)
+      bad[4 * g + l] = !done[g][l];
+  }
+  for (int p = 0; p < HERM_LANES; p++) { /* a sorting network: min and max, no branch */
+    double x[4] = {w[p], w[HERM_LANES + p], w[2 * HERM_LANES + p], w[3 * HERM_LANES + p]};
+    static const int cmp[5][2] = {{0, 1}, {2, 3}, {0, 2}, {1, 3}, {1, 2}};
+    for (int q = 0; q < 5; q++) {
+      const double u = x[cmp[q][0]], v = x[cmp[q][1]];
+      x[cmp[q][0]] = u < v ? u : v;
+      x[cmp[q][1]] = u < v ? v : u;
+    }
+    for (int i = 0; i < 4; i++)
+      w[i * HERM_LANES + p] = x[i];
+  }
+}
+
+static void herm4_eigvals_base(const double *ar, const double *ai, double *w, int *bad)
+{
+  herm4_body(ar, ai, w, bad, 0);
+}
+
+#ifdef HERM4_AVX2
+__attribute__((target("avx2"))) static void herm4_eigvals_avx2(const double *ar, const double *ai,
+                                                               double *w, int *bad)
+{
+  herm4_body(ar, ai, w, bad, 1);
+}
+#endif
+
+/* The eigenvalues w[i HERM_LANES + p] (ascending in i) of the HERM_LANES
+ * matrices of upper triangles ar[(r 4 + c) HERM_LANES + p], ai likewise;
+ * bad[p] the lanes whose iteration did not converge.  The AVX2 version where
+ * the processor has it (the same operations: the same bits). */
+static void herm4_eigvals(const double *ar, const double *ai, double *w, int *bad)
+{
+#ifdef HERM4_AVX2
+  if (__builtin_cpu_supports("avx2")) {
+    herm4_eigvals_avx2(ar, ai, w, bad);
+    return;
+  }
+#endif
+  herm4_eigvals_base(ar, ai, w, bad);
+}
+#endif
+
 /* The eigenvalues w[4 p ..] of the np <= HERM_LANES matrices Ar[16 p ..],
  * Ai[16 p ..]; bad[p] as tql_lanes. */
 static void herm_small_eigvals(int n, int np, const double *Ar, const double *Ai, double *w,
                                int *bad)
 {
   double D[4 * HERM_LANES], E[4 * HERM_LANES];
+#ifdef HERM4_VEC
+  if (n == 4) { /* the four branches of two particles in plane strain: herm4_eigvals */
+    double sr[16 * HERM_LANES] = {0.0}, si[16 * HERM_LANES] = {0.0}, sw[4 * HERM_LANES];
+    int sb[HERM_LANES];
+    for (int p = 0; p < np; p++)
+      for (int r = 0; r < 4; r++)
+        for (int c = r; c < 4; c++) {
+          sr[(r * 4 + c) * HERM_LANES + p] = Ar[16 * p + r * 4 + c];
+          si[(r * 4 + c) * HERM_LANES + p] = Ai[16 * p + r * 4 + c];
+        }
+    herm4_eigvals(sr, si, sw, sb);
+    for (int p = 0; p < np; p++) {
+      bad[p] = sb[p];
+      for (int i = 0; i < 4; i++)
+        w[4 * p + i] = sw[i * HERM_LANES + p];
+    }
+    return;
+  }
+#endif
   if (n == 4) { /* the four branches of two particles in plane strain: unrolled */
     for (int p = 0; p < np; p++)
       herm_tridiag(4, Ar + 16 * p, Ai + 16 * p, D + 4 * p, E + 4 * p);
@@ -1069,20 +1359,7 @@ static int hermitian(const mfs_disp_plan *dp)
  * operation is elementwise, so a point's value does not depend on the other
  * points of its block. */
 enum { BLK = 8 };
-_Static_assert((int)BLK <= (int)HERM_LANES, "a block's Hermitian problems go to herm_small_eigvals at once");
-
-/* The block kernels are compiled twice where the compiler can dispatch at run
- * time (GCC on x86-64 Linux: ifunc), for SSE2 and for AVX2 without FMA: the
- * same additions and multiplications, each rounded the same way, so the two
- * give the same bits, AVX2 with twice the lanes per instruction. */
-#if defined(__GNUC__) && !defined(__clang__) && defined(__x86_64__) && defined(__linux__) && \
-  !defined(MFS_NO_CLONES)
-#define MFS_CLONES __attribute__((target_clones("avx2", "default")))
-#define MFS_INLINE __attribute__((always_inline)) inline /* into each clone */
-#else
-#define MFS_CLONES
-#define MFS_INLINE inline
-#endif
+_Static_assert((int)BLK == (int)HERM_LANES, "a block's Hermitian problems go to herm_small_eigvals, herm4_eigvals at once");
 
 /* cos x, 1 - cos x and sin x of x[0..np), each to about an ulp absolute and
  * the versine, near x = 0, also relative (1 - cos x computed as such loses
@@ -1174,6 +1451,61 @@ MFS_CLONES static void phase_table(int np, const double *ph, int mmax, int vers,
 enum { FOLD_TAB = 64 }; /* phase tables on the stack up to |m| = 64; beyond, a sincos per offset */
 enum { OCHUNK = 32 };   /* offsets whose phases are formed at a time */
 
+/* acc[k BLK + p] += sum_q w[q ld + k] x[q][p] for k < K (a constant where
+ * inlined: the K BLK accumulators stay in registers over the offsets), the
+ * offsets q in order. */
+static MFS_INLINE void acc_lanes(const int K, int no, const double *w, int ld,
+                                 const double *const *x, double *acc)
+{
+#ifdef HERM4_VEC /* in vectors (GCC keeps the arrays below in memory) */
+  v4d a[4][BLK / 4];
+  for (int k = 0; k < K; k++)
+    for (int h = 0; h < BLK / 4; h++)
+      memcpy(&a[k][h], acc + k * BLK + 4 * h, sizeof a[k][h]);
+  for (int q = 0; q < no; q++) {
+    const double *wq = w + q * ld;
+    for (int h = 0; h < BLK / 4; h++) {
+      v4d xh; /* one load of four lanes (a copy of the array goes by halves) */
+      memcpy(&xh, x[q] + 4 * h, sizeof xh);
+      for (int k = 0; k < K; k++)
+        a[k][h] += wq[k] * xh;
+    }
+  }
+  for (int k = 0; k < K; k++)
+    for (int h = 0; h < BLK / 4; h++)
+      memcpy(acc + k * BLK + 4 * h, &a[k][h], sizeof a[k][h]);
+#else
+  double a[4 * BLK];
+  for (int k = 0; k < K; k++)
+    for (int p = 0; p < BLK; p++)
+      a[k * BLK + p] = acc[k * BLK + p];
+  for (int q = 0; q < no; q++) {
+    const double *xq = x[q], *wq = w + q * ld;
+    for (int k = 0; k < K; k++)
+      for (int p = 0; p < BLK; p++)
+        a[k * BLK + p] += wq[k] * xq[p];
+  }
+  for (int k = 0; k < K; k++)
+    for (int p = 0; p < BLK; p++)
+      acc[k * BLK + p] = a[k * BLK + p];
+#endif
+}
+
+/* acc_lanes over n components, four at a time. */
+static MFS_INLINE void acc_all(int n, int no, const double *w, int ld, const double *const *x,
+                               double *acc)
+{
+  int c = 0;
+  for (; c + 4 <= n; c += 4)
+    acc_lanes(4, no, w + c, ld, x, acc + c * BLK);
+  if (n - c >= 2) {
+    acc_lanes(2, no, w + c, ld, x, acc + c * BLK);
+    c += 2;
+  }
+  if (n - c == 1)
+    acc_lanes(1, no, w + c, ld, x, acc + c * BLK);
+}
+
 /* The folded sums of L wave vectors (L = 1 or BLK, a constant where it is
  * inlined, so that the accumulators stay in registers), of phases ph1 =
  * k.a1, ph2 = k.a2 (1D: ph2 = 0), all long waves (vers: every phase of the
@@ -1223,15 +1555,17 @@ static MFS_INLINE void fold_lanes(const mfs_disp_plan *dp, const int L, const do
         const double *a = x1 + i * BLK, *sa = s1 + i * BLK;
         const double *b = x2 + (FOLD_TAB + j) * BLK, *sb = s2 + (FOLD_TAB + j) * BLK;
         if (vers)
-          for (int p = 0; p < L; p++) {
+          for (int p = 0; p < L; p++)
             Xq[p] = (a[p] + b[p]) - (a[p] * b[p] - sa[p] * sb[p]);
-            Sq[p] = (sa[p] + sb[p]) - (sa[p] * b[p] + a[p] * sb[p]);
-          }
         else
-          for (int p = 0; p < L; p++) {
+          for (int p = 0; p < L; p++)
             Xq[p] = a[p] * b[p] - sa[p] * sb[p];
+        if (na > 0 && vers) /* the sines only where imaginary parts are kept */
+          for (int p = 0; p < L; p++)
+            Sq[p] = (sa[p] + sb[p]) - (sa[p] * b[p] + a[p] * sb[p]);
+        else if (na > 0)
+          for (int p = 0; p < L; p++)
             Sq[p] = sa[p] * b[p] + a[p] * sb[p];
-          }
       }
     }
     /* the sums over the chunk's offsets in order: one lane a component at a
@@ -1252,20 +1586,8 @@ static MFS_INLINE void fold_lanes(const mfs_disp_plan *dp, const int L, const do
         acca[c * BLK] = acc;
       }
     } else {
-      for (int q = 0; q < no; q++) {
-        for (int c = 0; c < ns; c++) {
-          const double w = sy[q * ns + c];
-#pragma GCC unroll 1
-          for (int p = 0; p < BLK; p++)
-            accs[c * BLK + p] += w * Xp[q][p];
-        }
-        for (int c = 0; c < na; c++) {
-          const double w = an[q * dp->nanti + c];
-#pragma GCC unroll 1
-          for (int p = 0; p < BLK; p++)
-            acca[c * BLK + p] += w * Sp[q][p];
-        }
-      }
+      acc_all(ns, no, sy, ns, Xp, accs);
+      acc_all(na, no, an, dp->nanti, Sp, acca);
     }
   }
   /* Re = c0 - sum sym vers (long waves) or c(0) + sum sym cos; the
@@ -1420,9 +1742,9 @@ static void note_fail(first_fail *f, mfs_status st, size_t s, size_t i)
  * same order on each point, without the copies and the general paths.  0 if
  * a point of the block needs them (a mass not real and positive, a coupling
  * mass): then the caller takes the block point by point. */
-static int herm2_lanes(const mfs_disp_plan *dp, int np, const size_t *idx, const double *re,
-                       const double *im, const disp_stress *s, size_t si, double complex *w,
-                       first_fail *first)
+MFS_CLONES static int herm2_lanes(const mfs_disp_plan *dp, int np, const size_t *idx,
+                                  const double *re, const double *im, const disp_stress *s,
+                                  size_t si, double complex *w, first_fail *first)
 {
   double a[BLK], d[BLK], kr[BLK], ki[BLK], m0[BLK], m1[BLK];
   int ok = 1;
@@ -1483,11 +1805,12 @@ static int herm2_lanes(const mfs_disp_plan *dp, int np, const size_t *idx, const
 /* Four Hermitian branches with a diagonal mass (two particles in plane
  * strain), over the lanes of a block: plane_contract's triangle c >= r, scaled
  * as herm_scaled, the same operations in the same order on each point, then
- * herm_small_eigvals on them all.  0 if a point of the block needs the
- * general path (a mass not real and positive, a coupling mass). */
-static int herm4_lanes(const mfs_disp_plan *dp, int np, const size_t *idx, const double *re,
-                       const double *im, const disp_stress *s, size_t si, double complex *w,
-                       first_fail *first)
+ * herm4_eigvals on them all (plain C: herm_small_eigvals).  0 if a point of
+ * the block needs the general path (a mass not real and positive, a coupling
+ * mass).  Compiled for SSE2 and AVX2 as the sums (the same bits). */
+MFS_CLONES static int herm4_lanes(const mfs_disp_plan *dp, int np, const size_t *idx,
+                                  const double *re, const double *im, const disp_stress *s,
+                                  size_t si, double complex *w, first_fail *first)
 {
   if (!dp->plane || dp->nb != 2 || dp->euler2)
     return 0;
@@ -1501,6 +1824,43 @@ static int herm4_lanes(const mfs_disp_plan *dp, int np, const size_t *idx, const
   }
   if (!ok)
     return 0;
+#ifdef HERM4_VEC
+  /* the triangle in herm4_eigvals' layout (entry-major, as re and im), the
+   * lanes past np zero */
+  double is0[BLK], is1[BLK];
+  for (int p = 0; p < BLK; p++) {
+    is0[p] = p < np ? 1.0 / sqrt(re[8 * BLK + p]) : 0.0;
+    is1[p] = p < np ? 1.0 / sqrt(re[(3 * 9 + 8) * BLK + p]) : 0.0;
+  }
+  for (int r = 0; r < 4; r++)
+    for (int c = r; c < 4; c++) {
+      const int i = r & 1, k = c & 1, c0 = ((r >> 1) * 2 + (c >> 1)) * 9;
+      const double *isr = r < 2 ? is0 : is1, *isc = c < 2 ? is0 : is1;
+      double *ar = Ar + (r * 4 + c) * HERM_LANES, *ai = Ai + (r * 4 + c) * HERM_LANES;
+      for (int p = 0; p < BLK; p++) {
+        double vr = 0.0, vi = 0.0;
+        for (int j = 0; j < 2; j++)
+          for (int l = 0; l < 2; l++) {
+            vr += t[P4(i, j, k, l)] * re[(c0 + j * 2 + l) * BLK + p];
+            vi += t[P4(i, j, k, l)] * im[(c0 + j * 2 + l) * BLK + p];
+          }
+        const double q = isr[p] * isc[p];
+        ar[p] = vr * q;
+        ai[p] = vi * q;
+      }
+    }
+  herm4_eigvals(Ar, Ai, wb, bad);
+  for (int p = 0; p < np; p++) {
+    double complex *wp = w + idx[p] * 4;
+    int fin = !bad[p];
+    for (int k = 0; k < 4; k++)
+      fin = fin && isfinite(wb[k * HERM_LANES + p]);
+    for (int k = 0; k < 4; k++)
+      wp[k] = fin ? CMPLX(wb[k * HERM_LANES + p], 0.0) : CMPLX(NAN, NAN);
+    if (!fin)
+      note_fail(first, MFS_EDOMAIN, si, idx[p]);
+  }
+#else
   for (int p = 0; p < np; p++) {
     double is[4];
     is[0] = is[1] = 1.0 / sqrt(re[8 * BLK + p]);
@@ -1531,6 +1891,7 @@ static int herm4_lanes(const mfs_disp_plan *dp, int np, const size_t *idx, const
     if (!fin)
       note_fail(first, MFS_EDOMAIN, si, idx[p]);
   }
+#endif
   return 1;
 }
 
