@@ -339,6 +339,19 @@ static SYMOP_INLINE size_t fill_block2(const mfs_csr *K, const double *s, const 
   return q;
 }
 
+/* fill_block2 with its flags constant (one specialized copy per case). */
+static size_t fill_block2_any(const mfs_csr *K, const double *s, const double *x0, double *y0,
+                              mfs_symop *A, int t, size_t q, size_t *wt, int *bad)
+{
+  if (s && x0)
+    return fill_block2(K, s, x0, 1, 1, y0, A, t, q, wt, bad);
+  if (s)
+    return fill_block2(K, s, NULL, 1, 0, NULL, A, t, q, wt, bad);
+  if (x0)
+    return fill_block2(K, NULL, x0, 0, 1, y0, A, t, q, wt, bad);
+  return fill_block2(K, NULL, NULL, 0, 0, NULL, A, t, q, wt, bad);
+}
+
 /* The 2 x 2 build for K made of full blocks in sorted rows (plane strain as
  * mfs_assemble writes it): rows 2i and 2i+1 have the same columns,
  * ascending, in pairs (2j, 2j+1).  The first pass counts each block row's
@@ -438,28 +451,14 @@ static int op_build_pairs(const mfs_csr *K, const double *s, const double *restr
     size_t q = 0;
     for (int t = 0; t < NB; t++) {
       q0[t] = q;
-      if (s && x0)
-        q = fill_block2(K, s, x0, 1, 1, y0, A, t, q, w + t, &bad);
-      else if (s)
-        q = fill_block2(K, s, NULL, 1, 0, NULL, A, t, q, w + t, &bad);
-      else if (x0)
-        q = fill_block2(K, NULL, x0, 0, 1, y0, A, t, q, w + t, &bad);
-      else
-        q = fill_block2(K, NULL, NULL, 0, 0, NULL, A, t, q, w + t, &bad);
+      q = fill_block2_any(K, s, x0, y0, A, t, q, w + t, &bad);
       nr[t] = q - q0[t];
     }
   } else {
     MFS_OMP("omp parallel for schedule(dynamic, 1) num_threads(nt) reduction(|:bad)")
     for (int t = 0; t < NB; t++) {
       size_t q = q0[t] = A->ptr[A->cut[t]];
-      if (s && x0)
-        q = fill_block2(K, s, x0, 1, 1, y0, A, t, q, w + t, &bad);
-      else if (s)
-        q = fill_block2(K, s, NULL, 1, 0, NULL, A, t, q, w + t, &bad);
-      else if (x0)
-        q = fill_block2(K, NULL, x0, 0, 1, y0, A, t, q, w + t, &bad);
-      else
-        q = fill_block2(K, NULL, NULL, 0, 0, NULL, A, t, q, w + t, &bad);
+      q = fill_block2_any(K, s, x0, y0, A, t, q, w + t, &bad);
       nr[t] = q - q0[t];
     }
   }
