@@ -22,7 +22,6 @@
 #if defined(__GNUC__)
 #define SYMOP_V2D 1
 typedef double v2d __attribute__((vector_size(16)));
-typedef long long v2d_i __attribute__((vector_size(16)));
 #endif
 /* The fill's values with non-temporal stores where SSE2 has them and the
  * values are 16-byte aligned (mfs_set_allocator's may not be): the copy is
@@ -222,7 +221,7 @@ static SYMOP_INLINE void pair_scaled(const double *restrict v0, const double *re
     p0 = r0 * xv;
     p1 = r1 * xv;
     /* (p0[0] + p0[1], p1[0] + p1[1]) */
-    *ys += __builtin_shuffle(p0, p1, (v2d_i){0, 2}) + __builtin_shuffle(p0, p1, (v2d_i){1, 3});
+    *ys += (v2d){p0[0], p1[0]} + (v2d){p0[1], p1[1]}; /* GCC and Clang alike */
   }
 }
 #else
