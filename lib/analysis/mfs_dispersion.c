@@ -1824,9 +1824,15 @@ MFS_CLONES static int herm4_lanes(const mfs_disp_plan *dp, int np, const size_t 
   }
   if (!ok)
     return 0;
+  /* the triangle in the layout of the kernel: herm4_eigvals' entry-major (as
+   * re and im) or herm_small_eigvals' point-major; the lanes past np zero */
 #ifdef HERM4_VEC
-  /* the triangle in herm4_eigvals' layout (entry-major, as re and im), the
-   * lanes past np zero */
+#define AT4(e, p) ((e) * HERM_LANES + (p))
+#define W4(k, p) ((k) * HERM_LANES + (p))
+#else
+#define AT4(e, p) (16 * (p) + (e))
+#define W4(k, p) (4 * (p) + (k))
+#endif
   double is0[BLK], is1[BLK];
   for (int p = 0; p < BLK; p++) {
     is0[p] = p < np ? 1.0 / sqrt(re[8 * BLK + p]) : 0.0;
@@ -1836,7 +1842,6 @@ MFS_CLONES static int herm4_lanes(const mfs_disp_plan *dp, int np, const size_t 
     for (int c = r; c < 4; c++) {
       const int i = r & 1, k = c & 1, c0 = ((r >> 1) * 2 + (c >> 1)) * 9;
       const double *isr = r < 2 ? is0 : is1, *isc = c < 2 ? is0 : is1;
-      double *ar = Ar + (r * 4 + c) * HERM_LANES, *ai = Ai + (r * 4 + c) * HERM_LANES;
       for (int p = 0; p < BLK; p++) {
         double vr = 0.0, vi = 0.0;
         for (int j = 0; j < 2; j++)
@@ -1845,53 +1850,27 @@ MFS_CLONES static int herm4_lanes(const mfs_disp_plan *dp, int np, const size_t 
             vi += t[P4(i, j, k, l)] * im[(c0 + j * 2 + l) * BLK + p];
           }
         const double q = isr[p] * isc[p];
-        ar[p] = vr * q;
-        ai[p] = vi * q;
+        Ar[AT4(r * 4 + c, p)] = vr * q;
+        Ai[AT4(r * 4 + c, p)] = vi * q;
       }
     }
+#ifdef HERM4_VEC
   herm4_eigvals(Ar, Ai, wb, bad);
-  for (int p = 0; p < np; p++) {
-    double complex *wp = w + idx[p] * 4;
-    int fin = !bad[p];
-    for (int k = 0; k < 4; k++)
-      fin = fin && isfinite(wb[k * HERM_LANES + p]);
-    for (int k = 0; k < 4; k++)
-      wp[k] = fin ? CMPLX(wb[k * HERM_LANES + p], 0.0) : CMPLX(NAN, NAN);
-    if (!fin)
-      note_fail(first, MFS_EDOMAIN, si, idx[p]);
-  }
 #else
-  for (int p = 0; p < np; p++) {
-    double is[4];
-    is[0] = is[1] = 1.0 / sqrt(re[8 * BLK + p]);
-    is[2] = is[3] = 1.0 / sqrt(re[(3 * 9 + 8) * BLK + p]);
-    double *ar = Ar + 16 * p, *ai = Ai + 16 * p;
-    for (int r = 0; r < 4; r++)
-      for (int c = r; c < 4; c++) {
-        const int i = r & 1, k = c & 1, c0 = ((r >> 1) * 2 + (c >> 1)) * 9;
-        double vr = 0.0, vi = 0.0;
-        for (int j = 0; j < 2; j++)
-          for (int l = 0; l < 2; l++) {
-            vr += t[P4(i, j, k, l)] * re[(c0 + j * 2 + l) * BLK + p];
-            vi += t[P4(i, j, k, l)] * im[(c0 + j * 2 + l) * BLK + p];
-          }
-        const double q = is[r] * is[c];
-        ar[r * 4 + c] = vr * q;
-        ai[r * 4 + c] = vi * q;
-      }
-  }
   herm_small_eigvals(4, np, Ar, Ai, wb, bad);
+#endif
   for (int p = 0; p < np; p++) {
     double complex *wp = w + idx[p] * 4;
     int fin = !bad[p];
     for (int k = 0; k < 4; k++)
-      fin = fin && isfinite(wb[4 * p + k]);
+      fin = fin && isfinite(wb[W4(k, p)]);
     for (int k = 0; k < 4; k++)
-      wp[k] = fin ? CMPLX(wb[4 * p + k], 0.0) : CMPLX(NAN, NAN);
+      wp[k] = fin ? CMPLX(wb[W4(k, p)], 0.0) : CMPLX(NAN, NAN);
     if (!fin)
       note_fail(first, MFS_EDOMAIN, si, idx[p]);
   }
-#endif
+#undef AT4
+#undef W4
   return 1;
 }
 
