@@ -1361,20 +1361,20 @@ static int hermitian(const mfs_disp_plan *dp)
 enum { BLK = 8 };
 _Static_assert((int)BLK == (int)HERM_LANES, "a block's Hermitian problems go to herm_small_eigvals, herm4_eigvals at once");
 
-/* cos x, 1 - cos x and sin x of x[0..np), each to about an ulp absolute and
+/* cos x, 1 - cos x and sin x of x[0..BLK), each to about an ulp absolute and
  * the versine, near x = 0, also relative (1 - cos x computed as such loses
  * it): x reduced to |r| <= pi/4 by n = nearest(x 2/pi) with pi/2 in two
  * parts (fdlibm's split: the first 33 bits, so that n pi/2 is exact for |n| <
  * 2^20, then the rest), Taylor series of sin r and 1 - cos r to r^17 and r^18
  * (the next terms are below 1e-19 at pi/4), then the quadrant, without
  * branches.  libm beyond |x| = 1e5 (far outside the Brillouin zone). */
-MFS_CLONES static void sincos_v(int np, const double *x, double *c, double *v, double *s)
+MFS_CLONES static void sincos_v(const double *x, double *c, double *v, double *s)
 {
   static const double two_pi = 6.36619772367581382433e-01, /* 2 / pi */
     pio2_1 = 1.57079632673412561417e+00,                   /* first 33 bits of pi / 2 */
     pio2_1t = 6.07710050650619224932e-11,                  /* pi / 2 - pio2_1 */
     shift = 6755399441055744.0;                            /* 1.5 * 2^52: rounds to an integer */
-  for (int p = 0; p < np; p++) {
+  for (int p = 0; p < BLK; p++) {
     double xp = x[p]; /* |x| >= 1e5, inf, NaN: garbage here, replaced below */
     double n = (xp * two_pi + shift) - shift;
     double r = (xp - n * pio2_1) - n * pio2_1t, z = r * r;
@@ -1398,30 +1398,36 @@ MFS_CLONES static void sincos_v(int np, const double *x, double *c, double *v, d
     s[p] = sq;
     v[p] = e0 * vr + (1.0 - e0) * (1.0 - cq);
   }
-  for (int p = 0; p < np; p++)
-    if (!(fabs(x[p]) < 1e5)) {
-      s[p] = sin(x[p]);
-      c[p] = cos(x[p]);
-      v[p] = 1.0 - c[p];
-    }
+  int far = 0; /* one test over the lanes (it vectorizes), the lanes apart only if one is far */
+  for (int p = 0; p < BLK; p++)
+    far |= !(fabs(x[p]) < 1e5);
+  if (far)
+    for (int p = 0; p < BLK; p++)
+      if (!(fabs(x[p]) < 1e5)) {
+        s[p] = sin(x[p]);
+        c[p] = cos(x[p]);
+        v[p] = 1.0 - c[p];
+      }
 }
 
 /* For the points of a block: x[m BLK + p] = 1 - cos(m ph_p) (vers) or
  * cos(m ph_p), s[m BLK + p] = sin(m ph_p), m = 0 .. mmax, by the addition
  * theorem (the versine form has no cancellation for small ph), restarted
  * from sincos_v every 8 steps so that rounding does not grow with m. */
-MFS_CLONES static void phase_table(int np, const double *ph, int mmax, int vers, double *x,
-                                   double *s)
+MFS_CLONES static void phase_table(const double *ph, int mmax, int vers, double *restrict x,
+                                   double *restrict s)
 {
   double c1[BLK], v1[BLK], s1[BLK], mp[BLK], cc[BLK], vv[BLK];
-  for (int p = 0; p < np; p++) {
+  for (int p = 0; p < BLK; p++) {
     x[p] = vers ? 0.0 : 1.0;
     s[p] = 0.0;
   }
   if (mmax < 1)
     return;
-  sincos_v(np, ph, c1, v1, s1);
-  for (int p = 0; p < np; p++) {
+  /* m = 1 in arrays of its own, apart from the table (x and s restrict: the
+   * loops below vectorize) */
+  sincos_v(ph, c1, v1, s1);
+  for (int p = 0; p < BLK; p++) {
     x[BLK + p] = vers ? v1[p] : c1[p];
     s[BLK + p] = s1[p];
   }
@@ -1429,18 +1435,18 @@ MFS_CLONES static void phase_table(int np, const double *ph, int mmax, int vers,
     double *xm = x + m * BLK, *sm = s + m * BLK;
     const double *xa = xm - BLK, *sa = sm - BLK;
     if ((m & 7) == 0) {
-      for (int p = 0; p < np; p++)
+      for (int p = 0; p < BLK; p++)
         mp[p] = m * ph[p];
-      sincos_v(np, mp, cc, vv, sm);
-      for (int p = 0; p < np; p++)
+      sincos_v(mp, cc, vv, sm);
+      for (int p = 0; p < BLK; p++)
         xm[p] = vers ? vv[p] : cc[p];
     } else if (vers) {
-      for (int p = 0; p < np; p++) {
+      for (int p = 0; p < BLK; p++) {
         xm[p] = (xa[p] + v1[p]) - (xa[p] * v1[p] - sa[p] * s1[p]);
         sm[p] = (sa[p] + s1[p]) - (sa[p] * v1[p] + xa[p] * s1[p]);
       }
     } else {
-      for (int p = 0; p < np; p++) {
+      for (int p = 0; p < BLK; p++) {
         xm[p] = xa[p] * c1[p] - sa[p] * s1[p];
         sm[p] = sa[p] * c1[p] + xa[p] * s1[p];
       }
@@ -1506,14 +1512,16 @@ static MFS_INLINE void acc_all(int n, int no, const double *w, int ld, const dou
     acc_lanes(1, no, w + c, ld, x, acc + c * BLK);
 }
 
-/* The folded sums of L wave vectors (L = 1 or BLK, a constant where it is
- * inlined, so that the accumulators stay in registers), of phases ph1 =
+/* The folded sums of BLK wave vectors (every loop over the lanes of a
+ * constant count, so that it vectorizes and the accumulators stay in
+ * registers), of phases ph1 =
  * k.a1, ph2 = k.a2 (1D: ph2 = 0), all long waves (vers: every phase of the
  * terms within pi/2, the versine form) or none (the cosine form): re[c BLK +
  * p] + i im[c BLK + p] for the raw components c of the plan (imaginary parts
  * only if want_im; zero otherwise).  Reads the plan only; no allocation. */
-static MFS_INLINE void fold_lanes(const mfs_disp_plan *dp, const int L, const double *ph1,
-                                  const double *ph2, int vers, int want_im, double *re, double *im)
+static MFS_INLINE void fold_lanes(const mfs_disp_plan *dp, const double *ph1,
+                                  const double *ph2, int vers, int want_im, double *restrict re,
+                                  double *restrict im)
 {
   double x1[(FOLD_TAB + 1) * BLK], s1[(FOLD_TAB + 1) * BLK];
   double x2[(2 * FOLD_TAB + 1) * BLK], s2[(2 * FOLD_TAB + 1) * BLK];
@@ -1521,11 +1529,11 @@ static MFS_INLINE void fold_lanes(const mfs_disp_plan *dp, const int L, const do
   double accs[MFS_DISP_NC * BLK], acca[MFS_DISP_NC * BLK];
   const int two = dp->spec.disc.dim > 1, m = dp->mij < FOLD_TAB ? dp->mij : FOLD_TAB;
   const int ns = dp->nsym, na = want_im ? dp->nanti : 0;
-  phase_table(L, ph1, m, vers, x1, s1);
+  phase_table(ph1, m, vers, x1, s1);
   if (two) {
-    phase_table(L, ph2, m, vers, x2 + FOLD_TAB * BLK, s2 + FOLD_TAB * BLK);
+    phase_table(ph2, m, vers, x2 + FOLD_TAB * BLK, s2 + FOLD_TAB * BLK);
     for (int q = 1; q <= m; q++)
-      for (int p = 0; p < L; p++) {
+      for (int p = 0; p < BLK; p++) {
         x2[(FOLD_TAB - q) * BLK + p] = x2[(FOLD_TAB + q) * BLK + p];
         s2[(FOLD_TAB - q) * BLK + p] = -s2[(FOLD_TAB + q) * BLK + p];
       }
@@ -1543,10 +1551,10 @@ static MFS_INLINE void fold_lanes(const mfs_disp_plan *dp, const int L, const do
       Xp[q] = Xq;
       Sp[q] = Sq;
       if (i > m || j > m || j < -m) {
-        for (int p = 0; p < L; p++)
+        for (int p = 0; p < BLK; p++)
           t[p] = i * ph1[p] + j * ph2[p];
-        sincos_v(L, t, cc, vv, Sq);
-        for (int p = 0; p < L; p++)
+        sincos_v(t, cc, vv, Sq);
+        for (int p = 0; p < BLK; p++)
           Xq[p] = vers ? vv[p] : cc[p];
       } else if (!two) { /* the tables themselves */
         Xp[q] = x1 + i * BLK;
@@ -1555,81 +1563,66 @@ static MFS_INLINE void fold_lanes(const mfs_disp_plan *dp, const int L, const do
         const double *a = x1 + i * BLK, *sa = s1 + i * BLK;
         const double *b = x2 + (FOLD_TAB + j) * BLK, *sb = s2 + (FOLD_TAB + j) * BLK;
         if (vers)
-          for (int p = 0; p < L; p++)
+          for (int p = 0; p < BLK; p++)
             Xq[p] = (a[p] + b[p]) - (a[p] * b[p] - sa[p] * sb[p]);
         else
-          for (int p = 0; p < L; p++)
+          for (int p = 0; p < BLK; p++)
             Xq[p] = a[p] * b[p] - sa[p] * sb[p];
         if (na > 0 && vers) /* the sines only where imaginary parts are kept */
-          for (int p = 0; p < L; p++)
+          for (int p = 0; p < BLK; p++)
             Sq[p] = (sa[p] + sb[p]) - (sa[p] * b[p] + a[p] * sb[p]);
         else if (na > 0)
-          for (int p = 0; p < L; p++)
+          for (int p = 0; p < BLK; p++)
             Sq[p] = sa[p] * b[p] + a[p] * sb[p];
       }
     }
-    /* the sums over the chunk's offsets in order: one lane a component at a
-     * time (a register), BLK lanes an offset at a time (vectors over the
-     * lanes); the same additions in the same order either way */
+    /* the sums over the chunk's offsets in order, BLK lanes an offset at a
+     * time (vectors over the lanes) */
     const double *sy = dp->sym + o0 * (size_t)ns, *an = dp->anti + o0 * (size_t)dp->nanti;
-    if (L == 1) {
-      for (int c = 0; c < ns; c++) {
-        double acc = accs[c * BLK];
-        for (int q = 0; q < no; q++)
-          acc += sy[q * ns + c] * Xp[q][0];
-        accs[c * BLK] = acc;
-      }
-      for (int c = 0; c < na; c++) {
-        double acc = acca[c * BLK];
-        for (int q = 0; q < no; q++)
-          acc += an[q * dp->nanti + c] * Sp[q][0];
-        acca[c * BLK] = acc;
-      }
-    } else {
-      acc_all(ns, no, sy, ns, Xp, accs);
-      acc_all(na, no, an, dp->nanti, Sp, acca);
-    }
+    acc_all(ns, no, sy, ns, Xp, accs);
+    acc_all(na, no, an, dp->nanti, Sp, acca);
   }
   /* Re = c0 - sum sym vers (long waves) or c(0) + sum sym cos; the
    * components not kept: their sums at k = 0; imaginary parts not kept: 0 */
   const double *base = vers ? dp->c0 : dp->corig;
-  for (int k = 0; k < dp->nc; k++)
-    for (int p = 0; p < L; p++) {
-      re[k * BLK + p] = base[k];
+  const double sg = vers ? -1.0 : 1.0; /* b + (-1) a is b - a exactly: one loop that vectorizes */
+  for (int k = 0; k < dp->nc; k++) {
+    const double b = base[k];
+    for (int p = 0; p < BLK; p++) {
+      re[k * BLK + p] = b;
       im[k * BLK + p] = 0.0;
     }
+  }
   for (int c = 0; c < ns; c++) {
     const int k = dp->csym[c];
-    for (int p = 0; p < L; p++)
-      re[k * BLK + p] = vers ? base[k] - accs[c * BLK + p] : base[k] + accs[c * BLK + p];
+    const double b = base[k];
+    for (int p = 0; p < BLK; p++)
+      re[k * BLK + p] = b + sg * accs[c * BLK + p];
   }
   for (int c = 0; c < na; c++) {
     const int k = dp->canti[c];
-    for (int p = 0; p < L; p++)
+    for (int p = 0; p < BLK; p++)
       im[k * BLK + p] = acca[c * BLK + p];
   }
 }
 
 /* A block of np <= BLK wave vectors: all BLK lanes computed (the unused ones
- * at phase 0), or one lane. */
+ * at phase 0; a single point costs a block, which the vector loops make
+ * cheaper than one lane in scalar loops of a count not known in advance). */
 MFS_CLONES static void fold_block(const mfs_disp_plan *dp, int np, const double *ph1,
-                                  const double *ph2,
-                       int vers, int want_im, double *re, double *im)
+                                  const double *ph2, int vers, int want_im, double *re,
+                                  double *im)
 {
-  if (np == 1) {
-    fold_lanes(dp, 1, ph1, ph2, vers, want_im, re, im);
-    return;
-  }
   double p1[BLK], p2[BLK];
   for (int p = 0; p < BLK; p++) {
     p1[p] = p < np ? ph1[p] : 0.0;
     p2[p] = p < np ? ph2[p] : 0.0;
   }
-  fold_lanes(dp, BLK, p1, p2, vers, want_im, re, im);
+  fold_lanes(dp, p1, p2, vers, want_im, re, im);
 }
 
 /* Long waves (the versine form): every phase of the terms within pi/2. */
-static int long_wave(const mfs_disp_plan *dp, double ph1, double ph2)
+static inline int long_wave(const mfs_disp_plan *dp, double ph1, double ph2)
 {
   return dp->mij * (fabs(ph1) + fabs(ph2)) <= M_PI_2;
 }
@@ -1650,16 +1643,27 @@ static void fold_eval(const mfs_disp_plan *dp, double ph1, double ph2, int want_
   block_sums(dp, re, im, 0, ps);
 }
 
-/* The phases k.a1, k.a2 of a wave vector k (1/dx). */
+/* The phases ph1 = k.a1, ph2 = k.a2 of np wave vectors k = (kx, ky) (1/dx;
+ * 1D: ph2 = 0, ky not read), a loop over the lanes. */
+static inline void phases_lanes(const mfs_disp_plan *dp, int np, const double *kx,
+                                const double *ky, double *ph1, double *ph2)
+{
+  if (dp->spec.disc.dim == 1)
+    for (int p = 0; p < np; p++) {
+      ph1[p] = kx[p] * dp->a1[0];
+      ph2[p] = 0.0;
+    }
+  else
+    for (int p = 0; p < np; p++) {
+      ph1[p] = kx[p] * dp->a1[0] + ky[p] * dp->a1[1];
+      ph2[p] = kx[p] * dp->a2[0] + ky[p] * dp->a2[1];
+    }
+}
+
+/* The phases of one wave vector k[0..1]. */
 static void phases(const mfs_disp_plan *dp, const double *k, double *ph1, double *ph2)
 {
-  if (dp->spec.disc.dim == 1) {
-    *ph1 = k[0] * dp->a1[0];
-    *ph2 = 0.0;
-    return;
-  }
-  *ph1 = k[0] * dp->a1[0] + k[1] * dp->a1[1];
-  *ph2 = k[0] * dp->a2[0] + k[1] * dp->a2[1];
+  phases_lanes(dp, 1, k, k + 1, ph1, ph2);
 }
 
 /* What one stress needs: the scalar coefficients, or the plane-strain state. */
@@ -1704,18 +1708,6 @@ mfs_status mfs_disp_omega2_state(const mfs_disp_plan *dp, const mfs_plane_state 
   return mfs_disp_omega2_states(dp, s, 1, k, omega2);
 }
 
-/* The wave vector kappa pi (cos theta, sin theta) of a ray (1D: kappa pi). */
-static void ray_k(const mfs_disp_plan *dp, double kappa, double c, double s, double *k)
-{
-  if (dp->spec.disc.dim == 1) {
-    k[0] = kappa * M_PI;
-    k[1] = 0.0;
-  } else {
-    k[0] = kappa * M_PI * c;
-    k[1] = kappa * M_PI * s;
-  }
-}
-
 mfs_status mfs_disp_omega2(const mfs_disp_plan *dp, double sbar, double kappa, double theta,
                            double complex *omega2)
 {
@@ -1734,6 +1726,55 @@ static void note_fail(first_fail *f, mfs_status st, size_t s, size_t i)
 {
   if (f->st == MFS_OK || s < f->s || (s == f->s && i < f->i))
     *f = (first_fail){.st = st, .s = s, .i = i};
+}
+
+/* One scalar branch over the lanes of a block: solve1 of scalar_contract,
+ * K / m for a real m (the lumped mass), the same operations on each point;
+ * the points idx[0..np) into w[idx[p]]. */
+MFS_CLONES static void scalar_lanes(const mfs_disp_plan *dp, int np, const size_t *idx,
+                                    const double *restrict re, const double *restrict im,
+                                    const disp_stress *s, size_t si, int herm,
+                                    double complex *w, first_fail *first)
+{
+  (void)dp;
+  double wr[BLK], wi[BLK], odd[BLK];
+  const double ca = s->ca, cg = s->cg, hz = herm ? 0.0 : 1.0;
+  /* all BLK lanes (fold_block fills them), in loops that vectorize (the
+   * imaginary part computed and then zeroed where Hermitian: a division in a
+   * branch does not vectorize) */
+  for (int p = 0; p < BLK; p++) {
+    wr[p] = (ca * re[p] + cg * re[BLK + p]) / re[2 * BLK + p];
+    wi[p] = hz * ((ca * im[p] + cg * im[BLK + p]) / re[2 * BLK + p]);
+  }
+  /* the tests below at once: x - x is 0 for a finite x and NaN otherwise
+   * (a zero mass gives an infinite or NaN K / m); |Im m| is 0 for a real
+   * mass.  All zero (a lane past np too): every point as the loop below */
+  for (int p = 0; p < BLK; p++)
+    odd[p] = (wr[p] - wr[p]) + (wi[p] - wi[p]) + fabs(im[2 * BLK + p]);
+  double any = 0.0;
+  for (int p = 0; p < BLK; p++)
+    any += odd[p];
+  if (any == 0.0) {
+    for (int p = 0; p < np; p++)
+      w[idx[p]] = CMPLX(wr[p], wi[p]);
+    return;
+  }
+  for (int p = 0; p < np; p++) {
+    double complex *wp = w + idx[p];
+    mfs_status e = MFS_OK;
+    if (re[2 * BLK + p] == 0.0 || im[2 * BLK + p] != 0.0) { /* the general case */
+      double complex K = CMPLX(ca * re[p] + cg * re[BLK + p], ca * im[p] + cg * im[BLK + p]);
+      e = solve1(K, CMPLX(re[2 * BLK + p], im[2 * BLK + p]), herm, wp);
+    } else if (isfinite(wr[p]) && isfinite(wi[p])) {
+      *wp = CMPLX(wr[p], wi[p]);
+    } else {
+      e = MFS_EDOMAIN;
+    }
+    if (e != MFS_OK) {
+      *wp = CMPLX(NAN, NAN);
+      note_fail(first, e, si, idx[p]);
+    }
+  }
 }
 
 /* Two Hermitian branches with a diagonal mass (one particle in plane strain,
@@ -1885,29 +1926,8 @@ static void ray_block(const mfs_disp_plan *dp, int np, const size_t *idx, const 
   const int nb = dp->nbr, herm = hermitian(dp);
   fold_block(dp, np, ph1, ph2, vers, want_im(dp), re, im);
   for (size_t q = 0; q < ns; q++) {
-    if (nb == 1 && !dp->plane) { /* one scalar branch: solve1 of scalar_contract, over the lanes */
-      double wr[BLK], wi[BLK];
-      const double ca = at[q].ca, cg = at[q].cg;
-      for (int p = 0; p < np; p++) { /* K / m for a real m (the lumped mass) */
-        wr[p] = (ca * re[p] + cg * re[BLK + p]) / re[2 * BLK + p];
-        wi[p] = herm ? 0.0 : (ca * im[p] + cg * im[BLK + p]) / re[2 * BLK + p];
-      }
-      for (int p = 0; p < np; p++) {
-        double complex *w = omega2 + (s0 + q) * ld + idx[p] * (size_t)nb;
-        mfs_status e = MFS_OK;
-        if (re[2 * BLK + p] == 0.0 || im[2 * BLK + p] != 0.0) { /* the general case */
-          double complex K = CMPLX(ca * re[p] + cg * re[BLK + p], ca * im[p] + cg * im[BLK + p]);
-          e = solve1(K, CMPLX(re[2 * BLK + p], im[2 * BLK + p]), herm, w);
-        } else if (isfinite(wr[p]) && isfinite(wi[p])) {
-          *w = CMPLX(wr[p], wi[p]);
-        } else {
-          e = MFS_EDOMAIN;
-        }
-        if (e != MFS_OK) {
-          *w = CMPLX(NAN, NAN);
-          note_fail(first, e, s0 + q, idx[p]);
-        }
-      }
+    if (nb == 1 && !dp->plane) {
+      scalar_lanes(dp, np, idx, re, im, at + q, s0 + q, herm, omega2 + (s0 + q) * ld, first);
       continue;
     }
     if (herm && nb == 2 && herm2_lanes(dp, np, idx, re, im, at + q, s0 + q,
@@ -1963,18 +1983,37 @@ static void eval_points(const mfs_disp_plan *dp, const disp_stress *at, size_t s
 {
   for (size_t i0 = 0; i0 < n; i0 += BLK) {
     const int np = n - i0 < BLK ? (int)(n - i0) : BLK;
-    double ph1[BLK], ph2[BLK];
+    double ph1[BLK], ph2[BLK], kx[BLK], ky[BLK], k0[BLK] = {0.0}, k1[BLK] = {0.0};
     size_t idx[BLK];
     int lw[BLK], nlw = 0;
-    for (int p = 0; p < np; p++) {
-      double kk[2];
-      if (k) {
-        kk[0] = k[2 * (i0 + p)];
-        kk[1] = k[2 * (i0 + p) + 1];
-      } else {
-        ray_k(dp, kappa[i0 + p], c, s, kk);
+    /* the wave vectors k (1/dx), or kappa pi (cos theta, sin theta) of a ray
+     * (1D: kappa pi), and their phases: the lanes past np at k = 0, every
+     * loop over all BLK lanes (so that it vectorizes) */
+    if (k)
+      for (int p = 0; p < np; p++) {
+        k0[p] = k[2 * (i0 + p)];
+        k1[p] = k[2 * (i0 + p) + 1];
       }
-      phases(dp, kk, ph1 + p, ph2 + p);
+    else
+      for (int p = 0; p < np; p++)
+        k0[p] = kappa[i0 + p];
+    if (k)
+      for (int p = 0; p < BLK; p++) {
+        kx[p] = k0[p];
+        ky[p] = k1[p];
+      }
+    else if (dp->spec.disc.dim == 1)
+      for (int p = 0; p < BLK; p++) {
+        kx[p] = k0[p] * M_PI;
+        ky[p] = 0.0;
+      }
+    else
+      for (int p = 0; p < BLK; p++) {
+        kx[p] = k0[p] * M_PI * c;
+        ky[p] = k0[p] * M_PI * s;
+      }
+    phases_lanes(dp, BLK, kx, ky, ph1, ph2);
+    for (int p = 0; p < np; p++) {
       lw[p] = long_wave(dp, ph1[p], ph2[p]);
       nlw += lw[p];
       idx[p] = i0 + (size_t)p;
