@@ -1537,6 +1537,7 @@ static MFS_INLINE void fold_lanes(const mfs_disp_plan *dp, const double *ph1,
   double accs[MFS_DISP_NC * BLK], acca[MFS_DISP_NC * BLK];
   const int two = dp->spec.disc.dim > 1, m = dp->mij < FOLD_TAB ? dp->mij : FOLD_TAB;
   const int ns = dp->nsym, na = want_im ? dp->nanti : 0;
+  const int in_tab = dp->mij <= FOLD_TAB; /* every offset's |i|, |j| within the tables */
   phase_table(ph1, m, vers, x1, s1);
   if (two) {
     phase_table(ph2, m, vers, x2 + FOLD_TAB * BLK, s2 + FOLD_TAB * BLK);
@@ -1560,7 +1561,7 @@ static MFS_INLINE void fold_lanes(const mfs_disp_plan *dp, const double *ph1,
       double *Xq = X + q * BLK, *Sq = S + q * BLK;
       Xp[q] = Xq;
       Sp[q] = Sq;
-      if (i > m || j > m || j < -m) {
+      if (!in_tab && (i > m || j > m || j < -m)) {
         for (int p = 0; p < BLK; p++)
           t[p] = i * ph1[p] + j * ph2[p];
         sincos_v(t, cc, vv, Sq);
@@ -1761,10 +1762,13 @@ MFS_CLONES static void scalar_lanes(const mfs_disp_plan *dp, int np, const size_
    * mass.  All zero (a lane past np too): every point as the loop below */
   for (int p = 0; p < BLK; p++)
     odd[p] = (wr[p] - wr[p]) + (wi[p] - wi[p]) + fabs(im[2 * BLK + p]);
-  double any = 0.0;
-  for (int p = 0; p < BLK; p++)
-    any += odd[p];
-  if (any == 0.0) {
+  double h[BLK / 2]; /* their sum by halves (a chain of 3 additions, not BLK) */
+  for (int p = 0; p < BLK / 2; p++)
+    h[p] = odd[p] + odd[p + BLK / 2];
+  for (int p = 0; p < BLK / 4; p++)
+    h[p] += h[p + BLK / 4];
+  _Static_assert(BLK == 8, "the halving above stops at two lanes");
+  if (h[0] + h[1] == 0.0) {
     if (np == BLK && idx[BLK - 1] == idx[0] + BLK - 1) { /* consecutive: interleaved in a loop that vectorizes */
       double *restrict o = (double *)(w + idx[0]); /* C11 6.2.5: an array of two doubles */
       for (int p = 0; p < BLK; p++) {
