@@ -920,7 +920,11 @@ static HERM_INLINE void tql_lanes(int n, int np, double *D, double *E, int *bad)
  * libraries alternating in one process). */
 #if defined(__GNUC__) && !defined(__clang__) && defined(__x86_64__) && defined(__linux__) && \
   !defined(MFS_NO_CLONES)
+#if __GNUC__ >= 11 /* the x86-64-v4 level is known from GCC 11 on */
 #define MFS_CLONES __attribute__((target_clones("arch=x86-64-v4", "avx2", "default")))
+#else
+#define MFS_CLONES __attribute__((target_clones("avx2", "default")))
+#endif
 #define MFS_INLINE __attribute__((always_inline)) inline /* into each clone */
 #else
 #define MFS_CLONES
