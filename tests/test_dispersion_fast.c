@@ -352,11 +352,52 @@ static void errors(void)
   mfs_disp_plan_free(pl);
 }
 
+/* A value that is not finite: the block kernels' lanewise tests send its
+ * points to the general path, which writes NaN there and returns
+ * MFS_EDOMAIN; the other points of the same blocks keep their values, the
+ * same as each point alone.  A stress of 5e307 makes K / m overflow (or
+ * inf - inf) at some wave numbers; 10 points: a full block and a partial one. */
+static void overflow(void)
+{
+  mfs_status st;
+  mfs_disp_spec sp = {.disc = disc(1, MFS_LATTICE_LINE, "nodal", &mfs_shape_mls, 1.5,
+                                   MFS_FRAME_EULERIAN, MFS_PHYS_SCALAR, 0),
+                      .stretch = 1.0};
+  mfs_disp_plan *pl = mfs_disp_plan_alloc(&sp, &st);
+  CHECK(pl != NULL, "1D plan: %s", mfs_strerror(st));
+  if (!pl)
+    return;
+  double kap[10], big = 5e307, mild = 0.25;
+  double complex w[10], wm[10], w1;
+  for (int i = 0; i < 10; i++)
+    kap[i] = 0.1 * i;
+  st = mfs_disp_ray(pl, &big, 1, 0.0, kap, 10, w, 0);
+  CHECK(st == MFS_EDOMAIN, "sbar 5e307: %s, want MFS_EDOMAIN", mfs_strerror(st));
+  int nan = 0, fin = 0, differ = 0;
+  for (int i = 0; i < 10; i++) {
+    const int n = isnan(creal(w[i])) && isnan(cimag(w[i]));
+    nan += n;
+    fin += isfinite(creal(w[i])) && isfinite(cimag(w[i]));
+    mfs_status s1 = mfs_disp_omega2(pl, big, kap[i], 0.0, &w1);
+    differ += n ? !(s1 == MFS_EDOMAIN && isnan(creal(w1)))
+                : (s1 != MFS_OK || memcmp(&w1, w + i, sizeof w1) != 0);
+  }
+  CHECK(nan == 4 && fin == 6,
+        "sbar 5e307: %d NaN and %d finite points of 10, want 4 and 6 (kappa dx / pi >= 0.6)", nan,
+        fin);
+  CHECK(differ == 0, "sbar 5e307: %d points differ from the same point alone", differ);
+  CHECK(mfs_disp_ray(pl, &mild, 1, 0.0, kap, 10, wm, 0) == MFS_OK, "sbar 0.25: not MFS_OK");
+  for (int i = 0; i < 10; i++)
+    CHECK(isfinite(creal(wm[i])) && isfinite(cimag(wm[i])), "sbar 0.25, point %d not finite", i);
+  mfs_disp_plan_free(pl);
+}
+
 int main(void)
 {
   configs();
   long_waves();
   hermitian_solves();
   errors();
+  overflow();
   return check_summary("test_dispersion_fast");
 }
