@@ -913,7 +913,7 @@ static HERM_INLINE void tql_lanes(int n, int np, double *D, double *E, int *bad)
 /* The block kernels are compiled three times where the compiler can dispatch
  * at run time (GCC on x86-64 Linux: ifunc), for SSE2, AVX2 and x86-64-v4
  * (AVX-512): the same additions and multiplications, each rounded the same
- * way (C11 mode: -ffp-contract=off, so no FMA even where the processor has
+ * way (-ffp-contract=off, meson.build: no FMA even where the processor has
  * it), so all give the same bits, the wider ones with more lanes per
  * instruction.  The AVX-512 build took 0.87-0.94 of the AVX2 build's time on
  * the 1D rays and 0.8-0.9 on the 2D ones (an AMD EPYC with AVX-512, the two
