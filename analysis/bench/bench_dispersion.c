@@ -44,6 +44,10 @@
 #include "mfs_omp.h"
 #include "bench_common.h"
 
+#ifdef BENCH_DISPERSION_MODULE /* built as a module too (bench_dispersion_ns below): */
+#pragma GCC diagnostic ignored "-Wunused-function" /* the CSV driver is the executable's */
+#endif
+
 static double now(void)
 {
   struct timespec t;
@@ -378,6 +382,37 @@ static void bench(FILE *out, const char *name, int repeat, int threads, const ch
   unmake(&f);
 }
 
+#ifdef BENCH_DISPERSION_MODULE
+/* For bench_dispersion_numpy.py, which loads this file built as a module
+ * (ctypes) and times the C rays in its own process, right beside NumPy's
+ * evaluation: the machine runs each process at one of two speed levels
+ * (docs/benchmarks.md), so only one process gives both sides the same.
+ * Returns the median over repeat runs of phase ("ray" or "ray-stresses") of
+ * family name, in ns per point; NAN for another phase. */
+double bench_dispersion_ns(const char *name, const char *phase, int repeat)
+{
+  if (strcmp(phase, "ray") && strcmp(phase, "ray-stresses"))
+    return NAN;
+  family f = make(name);
+  const int npts = f.nplan * f.nsig * f.nth * f.nk;
+  double complex *w = malloc((size_t)npts * f.nb * sizeof *w);
+  double *ts = malloc((size_t)(repeat > 0 ? repeat : 1) * sizeof *ts);
+  double med = NAN;
+  if (w && ts && repeat > 0) {
+    for (int r = 0; r < repeat; r++) {
+      double t0 = now();
+      run_phase(&f, phase, f.nk, f.kap, w);
+      ts[r] = now() - t0;
+    }
+    qsort(ts, (size_t)repeat, sizeof *ts, bench_cmp_double);
+    med = 1e9 * ts[repeat / 2] / npts;
+  }
+  free(ts);
+  free(w);
+  unmake(&f);
+  return med;
+}
+#else
 int main(int argc, char **argv)
 {
   int repeat = 7, threads = 1;
@@ -417,3 +452,4 @@ int main(int argc, char **argv)
     fclose(out);
   return 0;
 }
+#endif

@@ -15,11 +15,16 @@ other (the machine is shared: a run's ratio compares like with like):
       numbers: omega2 = sum_jk K_jk cos(k . (j a1 + k a2)) / M_00 (the stencil of
       mfstab stencil), against the C ray (phase "ray").
 The coefficients (phi', phi'', K_jk) and the C values come from
-bench_dispersion --numpy-data; NumPy evaluates from them (vectorized: np.sin,
-np.cos of the phase matrices and a matrix product), the time after the plan
-as for the C side.  Each run: the C bench's median of --repeat 3, then the
-NumPy median of 3 repeats; over --runs N (>= 5) runs, min / median / max of
-each and of the ratio NumPy / C; the load average (1 min) at every run.
+bench_dispersion --numpy-data (once per family); NumPy evaluates from them
+(vectorized: np.sin, np.cos of the phase matrices and a matrix product), the
+time after the plan as for the C side.  The C side is timed in this process:
+bench_dispersion.c built as a module (bench_dispersion_py.so, ctypes; the same
+families and phases as the executable), because the machine runs each process
+at one of two speed levels (docs/benchmarks.md, round 8) and a C subprocess
+per run compared one level with the other.  Each run: the C median of 3
+repeats, then the NumPy median of 3 repeats; over --runs N (>= 5) runs, min /
+median / max of each and of the ratio NumPy / C; the load average (1 min) at
+every run.
 CSV (default notebooks-data/bench_dispersion_numpy.csv):
   family,comparison,run,c_ns_per_point,numpy_ns_per_point,ratio,numpy_error,load1,
   flop_per_point
@@ -30,10 +35,11 @@ wave vector, shared by the stresses) over its points, the same for both sides
 (analysis/bench/limits.py states it against dgemm's rate: fraction for the C
 side, numpy_fraction for NumPy).
 usage: /usr/bin/python3 analysis/bench/bench_dispersion_numpy.py [--runs N]
-       [--bench PATH] [-o FILE]
+       [--bench PATH] [--module PATH] [-o FILE]
 Not a test: nothing asserts a time."""
 import argparse
 import csv
+import ctypes
 import io
 import os
 import statistics
@@ -50,11 +56,21 @@ def load1():
         return float(f.read().split()[0])
 
 
-def c_run(bench, family, tmp):
-    out = subprocess.run([bench, '--family', family, '--repeat', '3', '--no-threads',
+def c_data(bench, family, tmp):
+    """The family's coefficients and C values into tmp; flop per point of each phase."""
+    out = subprocess.run([bench, '--family', family, '--repeat', '1', '--no-threads',
                           '--numpy-data', tmp], check=True, capture_output=True, text=True).stdout
-    return {r['phase']: (float(r['ns_per_point']), 1e9 * float(r['gflop']) / float(r['points']))
+    return {r['phase']: 1e9 * float(r['gflop']) / float(r['points'])
             for r in csv.DictReader(io.StringIO(out))}
+
+
+def c_module(path):
+    """bench_dispersion_ns(family, phase, repeat): the C median in ns per point."""
+    lib = ctypes.CDLL(path)
+    f = lib.bench_dispersion_ns
+    f.restype = ctypes.c_double
+    f.argtypes = [ctypes.c_char_p, ctypes.c_char_p, ctypes.c_int]
+    return lambda family, phase: f(family.encode(), phase.encode(), 3)
 
 
 def median_time(f, reps=3):
@@ -132,6 +148,8 @@ def main():
     ap.add_argument('--runs', type=int, default=7)
     ap.add_argument('--bench', default=os.path.join(root, 'build', 'analysis', 'bench',
                                                     'bench_dispersion'))
+    ap.add_argument('--module', default=os.path.join(root, 'build', 'analysis', 'bench',
+                                                     'bench_dispersion_py.so'))
     ap.add_argument('-o', default=os.path.join(root, 'notebooks-data',
                                                'bench_dispersion_numpy.csv'))
     a = ap.parse_args()
@@ -140,20 +158,26 @@ def main():
     # comparisons: (family, NumPy variant, C phase)
     comps = [('1d', 'per-stress', 'ray'), ('1d', 'shared', 'ray-stresses'), ('2d-antiplane', 'bloch', 'ray')]
     rows = []
+    c_ns = c_module(a.module)
     with tempfile.TemporaryDirectory() as tmp:
+        data = {}
+        for fam in ('1d', '2d-antiplane'):
+            d = os.path.join(tmp, fam)
+            os.mkdir(d)
+            fpp = c_data(a.bench, fam, d)
+            data[fam] = (fpp,) + (numpy_1d if fam == '1d' else numpy_2d)(d)
         for run in range(1, a.runs + 1):
             for fam in ('1d', '2d-antiplane'):
                 l = load1()
-                c = c_run(a.bench, fam, tmp)
-                fns, npts, err = (numpy_1d if fam == '1d' else numpy_2d)(tmp)
+                fpp, fns, npts, err = data[fam]
                 for f, variant, phase in comps:
                     if f != fam:
                         continue
+                    cns = c_ns(fam, phase)
                     t = median_time(fns[variant])
                     nns = 1e9 * t / npts
-                    cns, fpp = c[phase]
                     rows.append([fam, '%s/%s' % (variant, phase), run, cns, nns, nns / cns,
-                                 err, l, fpp])
+                                 err, l, fpp[phase]])
     summary = []
     for f, variant, phase in comps:
         name = '%s/%s' % (variant, phase)
