@@ -1746,12 +1746,11 @@ static void note_fail(first_fail *f, mfs_status st, size_t s, size_t i)
 /* One scalar branch over the lanes of a block: solve1 of scalar_contract,
  * K / m for a real m (the lumped mass), the same operations on each point;
  * the points idx[0..np) into w[idx[p]]. */
-MFS_CLONES static void scalar_lanes(const mfs_disp_plan *dp, int np, const size_t *idx,
+MFS_CLONES static void scalar_lanes(int np, const size_t *idx,
                                     const double *restrict re, const double *restrict im,
                                     const disp_stress *s, size_t si, int herm,
                                     double complex *w, first_fail *first)
 {
-  (void)dp;
   double wr[BLK], wi[BLK], odd[BLK];
   const double ca = s->ca, cg = s->cg, hz = herm ? 0.0 : 1.0;
   /* all BLK lanes (fold_block fills them), in loops that vectorize (the
@@ -1953,7 +1952,7 @@ static void ray_block(const mfs_disp_plan *dp, int np, const size_t *idx, const 
   fold_block(dp, np, ph1, ph2, vers, want_im(dp), re, im);
   for (size_t q = 0; q < ns; q++) {
     if (nb == 1 && !dp->plane) {
-      scalar_lanes(dp, np, idx, re, im, at + q, s0 + q, herm, omega2 + (s0 + q) * ld, first);
+      scalar_lanes(np, idx, re, im, at + q, s0 + q, herm, omega2 + (s0 + q) * ld, first);
       continue;
     }
     if (herm && nb == 2 && herm2_lanes(dp, np, idx, re, im, at + q, s0 + q,
