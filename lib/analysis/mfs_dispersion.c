@@ -1367,6 +1367,12 @@ static int hermitian(const mfs_disp_plan *dp)
  * operation is elementwise, so a point's value does not depend on the other
  * points of its block. */
 enum { BLK = 8 };
+/* The block's arrays on the stack at the vectors' alignment: a 32- or 64-byte
+ * load from an array only 16-byte aligned (the ABI's stack alignment) splits
+ * across cache lines, and the time then depended on where the stack happened
+ * to start (up to 15 % in bench_dispersion_ab under setarch -R with the
+ * environment 16 bytes longer or shorter). */
+#define LANE_ALIGN _Alignas(64)
 _Static_assert((int)BLK == (int)HERM_LANES, "a block's Hermitian problems go to herm_small_eigvals, herm4_eigvals at once");
 
 /* cos x, 1 - cos x and sin x of x[0..BLK), each to about an ulp absolute and
@@ -1425,7 +1431,7 @@ MFS_CLONES static void sincos_v(const double *x, double *c, double *v, double *s
 MFS_CLONES static void phase_table(const double *ph, int mmax, int vers, double *restrict x,
                                    double *restrict s)
 {
-  double c1[BLK], v1[BLK], s1[BLK], mp[BLK], cc[BLK], vv[BLK];
+  LANE_ALIGN double c1[BLK], v1[BLK], s1[BLK], mp[BLK], cc[BLK], vv[BLK];
   for (int p = 0; p < BLK; p++) {
     x[p] = vers ? 0.0 : 1.0;
     s[p] = 0.0;
@@ -1535,10 +1541,10 @@ static MFS_INLINE void fold_lanes(const mfs_disp_plan *dp, const double *ph1,
                                   const double *ph2, int vers, int want_im, double *restrict re,
                                   double *restrict im)
 {
-  double x1[(FOLD_TAB + 1) * BLK], s1[(FOLD_TAB + 1) * BLK];
-  double x2[(2 * FOLD_TAB + 1) * BLK], s2[(2 * FOLD_TAB + 1) * BLK];
-  double X[OCHUNK * BLK], S[OCHUNK * BLK], t[BLK], cc[BLK], vv[BLK];
-  double accs[MFS_DISP_NC * BLK], acca[MFS_DISP_NC * BLK];
+  LANE_ALIGN double x1[(FOLD_TAB + 1) * BLK], s1[(FOLD_TAB + 1) * BLK];
+  LANE_ALIGN double x2[(2 * FOLD_TAB + 1) * BLK], s2[(2 * FOLD_TAB + 1) * BLK];
+  LANE_ALIGN double X[OCHUNK * BLK], S[OCHUNK * BLK], t[BLK], cc[BLK], vv[BLK];
+  LANE_ALIGN double accs[MFS_DISP_NC * BLK], acca[MFS_DISP_NC * BLK];
   const int two = dp->spec.disc.dim > 1, m = dp->mij < FOLD_TAB ? dp->mij : FOLD_TAB;
   const int ns = dp->nsym, na = want_im ? dp->nanti : 0;
   const int in_tab = dp->mij <= FOLD_TAB; /* every offset's |i|, |j| within the tables */
@@ -1628,7 +1634,7 @@ MFS_CLONES static void fold_block(const mfs_disp_plan *dp, int np, const double 
                                   const double *ph2, int vers, int want_im, double *re,
                                   double *im)
 {
-  double p1[BLK], p2[BLK];
+  LANE_ALIGN double p1[BLK], p2[BLK];
   for (int p = 0; p < BLK; p++) {
     p1[p] = p < np ? ph1[p] : 0.0;
     p2[p] = p < np ? ph2[p] : 0.0;
@@ -1653,7 +1659,7 @@ static void block_sums(const mfs_disp_plan *dp, const double *re, const double *
 /* The folded sums at one wave vector. */
 static void fold_eval(const mfs_disp_plan *dp, double ph1, double ph2, int want_im, raw_sums *ps)
 {
-  double re[MFS_DISP_NC * BLK], im[MFS_DISP_NC * BLK];
+  LANE_ALIGN double re[MFS_DISP_NC * BLK], im[MFS_DISP_NC * BLK];
   fold_block(dp, 1, &ph1, &ph2, long_wave(dp, ph1, ph2), want_im, re, im);
   block_sums(dp, re, im, 0, ps);
 }
@@ -1663,15 +1669,16 @@ static void fold_eval(const mfs_disp_plan *dp, double ph1, double ph2, int want_
 static inline void phases_lanes(const mfs_disp_plan *dp, int np, const double *kx,
                                 const double *ky, double *ph1, double *ph2)
 {
+  const double a10 = dp->a1[0], a11 = dp->a1[1], a20 = dp->a2[0], a21 = dp->a2[1]; /* not reloaded after each store */
   if (dp->spec.disc.dim == 1)
     for (int p = 0; p < np; p++) {
-      ph1[p] = kx[p] * dp->a1[0];
+      ph1[p] = kx[p] * a10;
       ph2[p] = 0.0;
     }
   else
     for (int p = 0; p < np; p++) {
-      ph1[p] = kx[p] * dp->a1[0] + ky[p] * dp->a1[1];
-      ph2[p] = kx[p] * dp->a2[0] + ky[p] * dp->a2[1];
+      ph1[p] = kx[p] * a10 + ky[p] * a11;
+      ph2[p] = kx[p] * a20 + ky[p] * a21;
     }
 }
 
@@ -1743,29 +1750,40 @@ static void note_fail(first_fail *f, mfs_status st, size_t s, size_t i)
     *f = (first_fail){.st = st, .s = s, .i = i};
 }
 
-/* One scalar branch over the lanes of a block: solve1 of scalar_contract,
- * K / m for a real m (the lumped mass), the same operations on each point;
- * the points idx[0..np) into w[idx[p]]. */
+/* 1 / m of the lanes of a block (m = re[2 BLK + p], the real part of the
+ * scalar mass), once for all its stresses: scalar_lanes multiplies by it. */
+MFS_CLONES static void recip_lanes(const double *restrict re, double *restrict rm)
+{
+  for (int p = 0; p < BLK; p++)
+    rm[p] = 1.0 / re[2 * BLK + p];
+}
+
+/* One scalar branch over the lanes of a block: omega^2 = K / m for a real m
+ * (the lumped mass) as K (1 / m), with rm = 1 / m of recip_lanes shared by
+ * the stresses of the block (one division per lane and block instead of two
+ * per lane and stress; within an ulp or two of K / m, and the same bits for a
+ * point whatever block it is in).  A point whose K (1 / m) is not finite, or
+ * whose m is zero or not real: solve1 of scalar_contract (K / m, or the
+ * complex division).  The points idx[0..np) into w[idx[p]]. */
 MFS_CLONES static void scalar_lanes(int np, const size_t *idx,
                                     const double *restrict re, const double *restrict im,
-                                    const disp_stress *s, size_t si, int herm,
-                                    double complex *w, first_fail *first)
+                                    const double *restrict rm, const disp_stress *s, size_t si,
+                                    int herm, double complex *w, first_fail *first)
 {
-  double wr[BLK], wi[BLK], odd[BLK];
+  LANE_ALIGN double wr[BLK], wi[BLK], odd[BLK];
   const double ca = s->ca, cg = s->cg, hz = herm ? 0.0 : 1.0;
   /* all BLK lanes (fold_block fills them), in loops that vectorize (the
-   * imaginary part computed and then zeroed where Hermitian: a division in a
-   * branch does not vectorize) */
+   * imaginary part computed and then zeroed where Hermitian) */
   for (int p = 0; p < BLK; p++) {
-    wr[p] = (ca * re[p] + cg * re[BLK + p]) / re[2 * BLK + p];
-    wi[p] = hz * ((ca * im[p] + cg * im[BLK + p]) / re[2 * BLK + p]);
+    wr[p] = (ca * re[p] + cg * re[BLK + p]) * rm[p];
+    wi[p] = hz * ((ca * im[p] + cg * im[BLK + p]) * rm[p]);
   }
   /* the tests below at once: x - x is 0 for a finite x and NaN otherwise
-   * (a zero mass gives an infinite or NaN K / m); |Im m| is 0 for a real
-   * mass.  All zero (a lane past np too): every point as the loop below */
+   * (a zero mass gives an infinite 1 / m); |Im m| is 0 for a real mass.  All
+   * zero (a lane past np too): every point as the loop below */
   for (int p = 0; p < BLK; p++)
     odd[p] = (wr[p] - wr[p]) + (wi[p] - wi[p]) + fabs(im[2 * BLK + p]);
-  double h[BLK / 2]; /* their sum by halves (a chain of 3 additions, not BLK) */
+  LANE_ALIGN double h[BLK / 2]; /* their sum by halves (a chain of 3 additions, not BLK) */
   for (int p = 0; p < BLK / 2; p++)
     h[p] = odd[p] + odd[p + BLK / 2];
   for (int p = 0; p < BLK / 4; p++)
@@ -1787,13 +1805,11 @@ MFS_CLONES static void scalar_lanes(int np, const size_t *idx,
   for (int p = 0; p < np; p++) {
     double complex *wp = w + idx[p];
     mfs_status e = MFS_OK;
-    if (re[2 * BLK + p] == 0.0 || im[2 * BLK + p] != 0.0) { /* the general case */
+    if (isfinite(wr[p]) && isfinite(wi[p]) && im[2 * BLK + p] == 0.0 && re[2 * BLK + p] != 0.0) {
+      *wp = CMPLX(wr[p], wi[p]);
+    } else { /* the general case: K / m by division (1 / m may overflow where K / m does not) */
       double complex K = CMPLX(ca * re[p] + cg * re[BLK + p], ca * im[p] + cg * im[BLK + p]);
       e = solve1(K, CMPLX(re[2 * BLK + p], im[2 * BLK + p]), herm, wp);
-    } else if (isfinite(wr[p]) && isfinite(wi[p])) {
-      *wp = CMPLX(wr[p], wi[p]);
-    } else {
-      e = MFS_EDOMAIN;
     }
     if (e != MFS_OK) {
       *wp = CMPLX(NAN, NAN);
@@ -1812,7 +1828,7 @@ MFS_CLONES static int herm2_lanes(const mfs_disp_plan *dp, int np, const size_t 
                                   const double *re, const double *im, const disp_stress *s,
                                   size_t si, double complex *w, first_fail *first)
 {
-  double a[BLK], d[BLK], kr[BLK], ki[BLK], m0[BLK], m1[BLK];
+  LANE_ALIGN double a[BLK], d[BLK], kr[BLK], ki[BLK], m0[BLK], m1[BLK];
   int ok = 1;
   if (dp->plane) { /* K_ik = A_ijkl SA^{jl} (Lagrangian: hermitian()), M = SM I */
     if (dp->nb != 1 || dp->euler2)
@@ -1880,7 +1896,7 @@ MFS_CLONES static int herm4_lanes(const mfs_disp_plan *dp, int np, const size_t 
 {
   if (!dp->plane || dp->nb != 2 || dp->euler2)
     return 0;
-  double Ar[16 * HERM_LANES], Ai[16 * HERM_LANES], wb[4 * HERM_LANES];
+  LANE_ALIGN double Ar[16 * HERM_LANES], Ai[16 * HERM_LANES], wb[4 * HERM_LANES];
   int bad[HERM_LANES], ok = 1;
   const double *t = s->ps.A;
   for (int p = 0; p < np; p++) { /* the masses: blocks (0,0), (1,1) real positive, (0,1) zero */
@@ -1899,7 +1915,7 @@ MFS_CLONES static int herm4_lanes(const mfs_disp_plan *dp, int np, const size_t 
 #define AT4(e, p) (16 * (p) + (e))
 #define W4(k, p) (4 * (p) + (k))
 #endif
-  double is0[BLK], is1[BLK];
+  LANE_ALIGN double is0[BLK], is1[BLK];
   for (int p = 0; p < BLK; p++) {
     is0[p] = p < np ? 1.0 / sqrt(re[8 * BLK + p]) : 0.0;
     is1[p] = p < np ? 1.0 / sqrt(re[(3 * 9 + 8) * BLK + p]) : 0.0;
@@ -1947,12 +1963,15 @@ static void ray_block(const mfs_disp_plan *dp, int np, const size_t *idx, const 
                       const double *ph2, int vers, const disp_stress *at, size_t s0, size_t ns,
                       size_t ld, double complex *omega2, first_fail *first)
 {
-  double re[MFS_DISP_NC * BLK], im[MFS_DISP_NC * BLK];
+  LANE_ALIGN double re[MFS_DISP_NC * BLK], im[MFS_DISP_NC * BLK];
   const int nb = dp->nbr, herm = hermitian(dp);
+  LANE_ALIGN double rm[BLK];
   fold_block(dp, np, ph1, ph2, vers, want_im(dp), re, im);
+  if (nb == 1 && !dp->plane)
+    recip_lanes(re, rm);
   for (size_t q = 0; q < ns; q++) {
     if (nb == 1 && !dp->plane) {
-      scalar_lanes(np, idx, re, im, at + q, s0 + q, herm, omega2 + (s0 + q) * ld, first);
+      scalar_lanes(np, idx, re, im, rm, at + q, s0 + q, herm, omega2 + (s0 + q) * ld, first);
       continue;
     }
     if (herm && nb == 2 && herm2_lanes(dp, np, idx, re, im, at + q, s0 + q,
@@ -1963,7 +1982,7 @@ static void ray_block(const mfs_disp_plan *dp, int np, const size_t *idx, const 
       continue;
     /* eig_solve point by point, but the Hermitian problems of more than two
      * branches with a diagonal mass (its herm_small_eigvals) together */
-    double Ar[16 * HERM_LANES], Ai[16 * HERM_LANES], wb[4 * HERM_LANES];
+    LANE_ALIGN double Ar[16 * HERM_LANES], Ai[16 * HERM_LANES], wb[4 * HERM_LANES];
     int lane[HERM_LANES], bad[HERM_LANES], nl = 0;
     for (int p = 0; p < np; p++) {
       double complex *w = omega2 + (s0 + q) * ld + idx[p] * (size_t)nb, K[16], M[16];
@@ -2008,7 +2027,7 @@ static void eval_points(const mfs_disp_plan *dp, const disp_stress *at, size_t s
 {
   for (size_t i0 = 0; i0 < n; i0 += BLK) {
     const int np = n - i0 < BLK ? (int)(n - i0) : BLK;
-    double ph1[BLK], ph2[BLK], kx[BLK], ky[BLK], k0[BLK] = {0.0}, k1[BLK] = {0.0};
+    LANE_ALIGN double ph1[BLK], ph2[BLK], kx[BLK], ky[BLK], k0[BLK] = {0.0}, k1[BLK] = {0.0};
     size_t idx[BLK];
     int lw[BLK], nlw = 0;
     /* the wave vectors k (1/dx), or kappa pi (cos theta, sin theta) of a ray
@@ -2038,17 +2057,19 @@ static void eval_points(const mfs_disp_plan *dp, const disp_stress *at, size_t s
         ky[p] = k0[p] * M_PI * s;
       }
     phases_lanes(dp, BLK, kx, ky, ph1, ph2);
-    for (int p = 0; p < np; p++) {
-      lw[p] = long_wave(dp, ph1[p], ph2[p]);
-      nlw += lw[p];
+    const double mij = dp->mij;
+    for (int p = 0; p < BLK; p++) { /* long_wave of each lane, in a loop that vectorizes */
+      lw[p] = mij * (fabs(ph1[p]) + fabs(ph2[p])) <= M_PI_2;
       idx[p] = i0 + (size_t)p;
     }
+    for (int p = 0; p < BLK; p++)
+      nlw += p < np ? lw[p] : 0;
     if (nlw == 0 || nlw == np) {
       ray_block(dp, np, idx, ph1, ph2, nlw > 0, at, s0, ns, ld, omega2, first);
       continue;
     }
     for (int form = 0; form < 2; form++) { /* a block with both forms: each on its own */
-      double q1[BLK], q2[BLK];
+      LANE_ALIGN double q1[BLK], q2[BLK];
       size_t qi[BLK];
       int nq = 0;
       for (int p = 0; p < np; p++)
