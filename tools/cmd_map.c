@@ -27,7 +27,10 @@ static const char about[] =
   "                    --stress-xy fixed)\n"
   "Normalized (_norm): omega2 = omega^2 rho0 dx0^2 / mu0 (mu0 the small-strain shear modulus),\n"
   "stresses / mu0, wave vectors k dx0 / pi (k_worst in the frame's configuration: reference for the\n"
-  "Lagrangian kernel, current for the Eulerian; k_worst_current always current).\n"
+  "Lagrangian kernel, current for the Eulerian; k_worst_current always current): the first sample\n"
+  "(the zone's, then the worst direction's) within 1e-12 max|omega^2| of the least omega^2 (of the\n"
+  "largest growth, within 1e-12 sqrt(max|omega^2|)), so that mirror images, equal but for rounding,\n"
+  "give the same one on every machine.\n"
   "A point is stable when no sampled omega^2 has Re < -1e-10 max|omega^2| or a growth |Im sqrt(omega^2)|\n"
   "above sqrt(1e-10 max|omega^2|); zeros at non-reciprocal wave vectors are neutral (rank-deficiency).\n"
   "CSV columns: lattice,kernel,shape,quadrature,frame,mass,dilation,material,support_rule,lambda1,\n"
@@ -214,6 +217,19 @@ static mfs_status eval_point(const mfs_disp_plan *pl, const mfs_disp_sample *smp
       }
       if (fabs(re) <= tol && !mfs_disp_is_reciprocal(pl, kall + 2 * i, 1e-9))
         mp->zeros++;
+    }
+  /* the worst sample: the first (in kall's order) within 1e-12 of the scale
+   * of the extreme, so that wave vectors equal by symmetry (k and its mirror
+   * image), which differ only by rounding, give the same one whatever the
+   * rounding of the machine and the build */
+  const double tie = 1e-12 * scale, tie_g = 1e-12 * sqrt(scale);
+  for (size_t i = ntot; i-- > 0;)
+    for (int b = nb; b-- > 0;) {
+      double complex w2 = w[i * (size_t)nb + b];
+      if (creal(w2) <= mp->min_re + tie)
+        imin = i;
+      if (fabs(cimag(csqrt(w2))) >= mp->max_growth - tie_g)
+        igr = i;
     }
   int by_min = mp->min_re < -tol, unstable = by_min || mp->max_growth > sqrt(tol);
   if (mp->max_growth <= sqrt(tol))
