@@ -21,8 +21,10 @@ time after the plan as for the C side.  The C side is timed in this process:
 bench_dispersion.c built as a module (bench_dispersion_py.so, ctypes; the same
 families and phases as the executable), because the machine runs each process
 at one of two speed levels (docs/benchmarks.md, round 8) and a C subprocess
-per run compared one level with the other.  Each run: the C median of 3
-repeats, then the NumPy median of 3 repeats; over --runs N (>= 5) runs, min /
+per run compared one level with the other.  Each run: the C median of 7
+repeats, then the NumPy median of 7 repeats, each side after one untimed
+call (the C rays of a family take 34-130 us: a median of 3 moved by 25 % when
+one repeat met another process); over --runs N (>= 5) runs, min /
 median / max of each and of the ratio NumPy / C; the load average (1 min) at
 every run.
 CSV (default notebooks-data/bench_dispersion_numpy.csv):
@@ -51,6 +53,9 @@ import time
 import numpy as np
 
 
+REPS = 7  # repeats per run and side, after one untimed call (both sides: the median of 7)
+
+
 def load1():
     with open('/proc/loadavg') as f:
         return float(f.read().split()[0])
@@ -70,10 +75,12 @@ def c_module(path):
     f = lib.bench_dispersion_ns
     f.restype = ctypes.c_double
     f.argtypes = [ctypes.c_char_p, ctypes.c_char_p, ctypes.c_int]
-    return lambda family, phase: f(family.encode(), phase.encode(), 3)
+    return lambda family, phase: f(family.encode(), phase.encode(), REPS)
 
 
-def median_time(f, reps=3):
+def median_time(f, reps=None):
+    reps = reps or REPS
+    f()  # untimed, as the C side's first call
     ts = []
     for _ in range(reps):
         t0 = time.perf_counter()

@@ -2035,7 +2035,8 @@ static void eval_points(const mfs_disp_plan *dp, const disp_stress *at, size_t s
     const int np = n - i0 < BLK ? (int)(n - i0) : BLK;
     LANE_ALIGN double ph1[BLK], ph2[BLK], kx[BLK], ky[BLK], k0[BLK] = {0.0}, k1[BLK] = {0.0};
     size_t idx[BLK];
-    int lw[BLK], nlw = 0;
+    LANE_ALIGN double lw[BLK]; /* 1: long wave, 0: short (doubles: the test vectorizes) */
+    int nlw = 0;
     /* the wave vectors k (1/dx), or kappa pi (cos theta, sin theta) of a ray
      * (1D: kappa pi), and their phases: the lanes past np at k = 0, every
      * loop over all BLK lanes (so that it vectorizes) */
@@ -2044,6 +2045,9 @@ static void eval_points(const mfs_disp_plan *dp, const disp_stress *at, size_t s
         k0[p] = k[2 * (i0 + p)];
         k1[p] = k[2 * (i0 + p) + 1];
       }
+    else if (np == BLK) /* a loop of a known count, not a call of memcpy */
+      for (int p = 0; p < BLK; p++)
+        k0[p] = kappa[i0 + p];
     else
       for (int p = 0; p < np; p++)
         k0[p] = kappa[i0 + p];
@@ -2065,11 +2069,11 @@ static void eval_points(const mfs_disp_plan *dp, const disp_stress *at, size_t s
     phases_lanes(dp, BLK, kx, ky, ph1, ph2);
     const double mij = dp->mij;
     for (int p = 0; p < BLK; p++) { /* long_wave of each lane, in a loop that vectorizes */
-      lw[p] = mij * (fabs(ph1[p]) + fabs(ph2[p])) <= M_PI_2;
+      lw[p] = mij * (fabs(ph1[p]) + fabs(ph2[p])) <= M_PI_2 ? 1.0 : 0.0;
       idx[p] = i0 + (size_t)p;
     }
-    for (int p = 0; p < BLK; p++)
-      nlw += p < np ? lw[p] : 0;
+    for (int p = 0; p < np; p++)
+      nlw += lw[p] != 0.0;
     if (nlw == 0 || nlw == np) {
       ray_block(dp, np, idx, ph1, ph2, nlw > 0, at, s0, ns, ld, omega2, first);
       continue;
@@ -2079,7 +2083,7 @@ static void eval_points(const mfs_disp_plan *dp, const disp_stress *at, size_t s
       size_t qi[BLK];
       int nq = 0;
       for (int p = 0; p < np; p++)
-        if (lw[p] == form) {
+        if (lw[p] == (double)form) {
           q1[nq] = ph1[p];
           q2[nq] = ph2[p];
           qi[nq++] = idx[p];
