@@ -21,10 +21,12 @@ time after the plan as for the C side.  The C side is timed in this process:
 bench_dispersion.c built as a module (bench_dispersion_py.so, ctypes; the same
 families and phases as the executable), because the machine runs each process
 at one of two speed levels (docs/benchmarks.md, round 8) and a C subprocess
-per run compared one level with the other.  Each run: the C median of 7
-repeats, then the NumPy median of 7 repeats, each side after one untimed
-call (the C rays of a family take 34-130 us: a median of 3 moved by 25 % when
-one repeat met another process); over --runs N (>= 5) runs, min /
+per run compared one level with the other.  Each run: 7 C passes and 7
+NumPy passes in turns (C, NumPy, C, ...), each side's first pass untimed, and
+the median of each side (the C rays of a family take 34-130 us: with all C
+repeats before all NumPy ones, a burst of another process's work of about a
+millisecond fell on one side only, and one run in seven moved by 25-35 %);
+over --runs N (>= 5) runs, min /
 median / max of each and of the ratio NumPy / C; the load average (1 min) at
 every run.
 CSV (default notebooks-data/bench_dispersion_numpy.csv):
@@ -53,7 +55,7 @@ import time
 import numpy as np
 
 
-REPS = 7  # repeats per run and side, after one untimed call (both sides: the median of 7)
+REPS = 7  # repeats per run and side, alternating C, NumPy, C, ... (each side: the median of 7)
 
 
 def load1():
@@ -70,23 +72,26 @@ def c_data(bench, family, tmp):
 
 
 def c_module(path):
-    """bench_dispersion_ns(family, phase, repeat): the C median in ns per point."""
+    """bench_dispersion_ns(family, phase, 1): one C pass in ns per point (after its untimed one)."""
     lib = ctypes.CDLL(path)
     f = lib.bench_dispersion_ns
     f.restype = ctypes.c_double
     f.argtypes = [ctypes.c_char_p, ctypes.c_char_p, ctypes.c_int]
-    return lambda family, phase: f(family.encode(), phase.encode(), REPS)
+    return lambda family, phase: f(family.encode(), phase.encode(), 1)
 
 
-def median_time(f, reps=None):
-    reps = reps or REPS
-    f()  # untimed, as the C side's first call
-    ts = []
-    for _ in range(reps):
+def side_by_side(c, numpy_f, npts):
+    """The medians (ns per point) of REPS C passes and REPS NumPy passes, taken in turns, so
+    that a burst of another process's work falls on both sides alike; NumPy's first pass
+    untimed, as C's (bench_dispersion_ns makes one before it times)."""
+    numpy_f()
+    cs, ns = [], []
+    for _ in range(REPS):
+        cs.append(c())
         t0 = time.perf_counter()
-        f()
-        ts.append(time.perf_counter() - t0)
-    return statistics.median(ts)
+        numpy_f()
+        ns.append(1e9 * (time.perf_counter() - t0) / npts)
+    return statistics.median(cs), statistics.median(ns)
 
 
 def read(path):
@@ -180,9 +185,7 @@ def main():
                 for f, variant, phase in comps:
                     if f != fam:
                         continue
-                    cns = c_ns(fam, phase)
-                    t = median_time(fns[variant])
-                    nns = 1e9 * t / npts
+                    cns, nns = side_by_side(lambda: c_ns(fam, phase), fns[variant], npts)
                     rows.append([fam, '%s/%s' % (variant, phase), run, cns, nns, nns / cns,
                                  err, l, fpp[phase]])
     summary = []
