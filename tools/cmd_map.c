@@ -11,6 +11,7 @@
 
 #include "cli.h"
 #include "mfs_alloc.h"
+#include "cmd_map.h"
 #include "commands.h"
 #include "mfs_omp.h"
 
@@ -161,6 +162,28 @@ typedef struct {
   unsigned labels;
 } map_point;
 
+void map_worst(const double complex *w, size_t n, int nb, double scale, double *min_re,
+               double *max_growth, size_t *imin, size_t *igr)
+{
+  double lo = INFINITY, hi = 0.0;
+  for (size_t i = 0; i < n * (size_t)nb; i++) {
+    lo = fmin(lo, creal(w[i]));
+    hi = fmax(hi, fabs(cimag(csqrt(w[i]))));
+  }
+  const double tie = 1e-12 * scale, tie_g = 1e-12 * sqrt(scale);
+  *imin = *igr = 0;
+  for (size_t i = n; i-- > 0;) /* backwards: the first such sample is the last one kept */
+    for (int b = nb; b-- > 0;) {
+      double complex w2 = w[i * (size_t)nb + b];
+      if (creal(w2) <= lo + tie)
+        *imin = i;
+      if (fabs(cimag(csqrt(w2))) >= hi - tie_g)
+        *igr = i;
+    }
+  *min_re = lo;
+  *max_growth = hi;
+}
+
 /* Sample the Bloch symbol of plan pl at state st: the zone samples kz[0..nz)
  * (through the sample object when given), and the rays along the PDE's worst
  * direction.  The classification as mfs_classify's thresholds. */
@@ -201,36 +224,14 @@ static mfs_status eval_point(const mfs_disp_plan *pl, const mfs_disp_sample *smp
   for (size_t i = 0; i < ntot * (size_t)nb; i++)
     scale = fmax(scale, cabs(w[i]));
   const double tol = 1e-10 * scale;
-  *mp = (map_point){.min_re = INFINITY};
-  size_t imin = 0, igr = 0;
+  *mp = (map_point){0};
+  size_t imin, igr;
+  map_worst(w, ntot, nb, scale, &mp->min_re, &mp->max_growth, &imin, &igr);
   for (size_t i = 0; i < ntot; i++)
-    for (int b = 0; b < nb; b++) {
-      double complex w2 = w[i * (size_t)nb + b];
-      double re = creal(w2), g = fabs(cimag(csqrt(w2)));
-      if (re < mp->min_re) {
-        mp->min_re = re;
-        imin = i;
-      }
-      if (g > mp->max_growth) {
-        mp->max_growth = g;
-        igr = i;
-      }
-      if (fabs(re) <= tol && !mfs_disp_is_reciprocal(pl, kall + 2 * i, 1e-9))
+    for (int b = 0; b < nb; b++)
+      if (fabs(creal(w[i * (size_t)nb + b])) <= tol &&
+          !mfs_disp_is_reciprocal(pl, kall + 2 * i, 1e-9))
         mp->zeros++;
-    }
-  /* the worst sample: the first (in kall's order) within 1e-12 of the scale
-   * of the extreme, so that wave vectors equal by symmetry (k and its mirror
-   * image), which differ only by rounding, give the same one whatever the
-   * rounding of the machine and the build */
-  const double tie = 1e-12 * scale, tie_g = 1e-12 * sqrt(scale);
-  for (size_t i = ntot; i-- > 0;)
-    for (int b = nb; b-- > 0;) {
-      double complex w2 = w[i * (size_t)nb + b];
-      if (creal(w2) <= mp->min_re + tie)
-        imin = i;
-      if (fabs(cimag(csqrt(w2))) >= mp->max_growth - tie_g)
-        igr = i;
-    }
   int by_min = mp->min_re < -tol, unstable = by_min || mp->max_growth > sqrt(tol);
   if (mp->max_growth <= sqrt(tol))
     mp->max_growth = 0.0;
