@@ -183,6 +183,16 @@ def step(row, bw):
 POWER_ITERATIONS = 300  # lib/time/mfs_solver.c, mfs_solver2d.c
 
 
+def first_touch(row, bw):
+    """bench_first_touch: the block's bytes written once at the one-thread
+    bandwidth, against first_touch_s (the page faults; the rewrite_s column
+    is the same bytes once mapped)."""
+    mb, s = f(row, "size_mb"), f(row, "first_touch_s")
+    if not mb:
+        return "none", None, s
+    return "bytes", mb * 1048576.0 / bw[1], s
+
+
 def none(row, bw):
     for k in ("seconds", "total_s", "wall_s", "seconds_median", "eval_s"):
         if f(row, k) is not None:
@@ -199,6 +209,7 @@ RULES = {
     "bench_solver": solver,
     "bench_check": check,
     "bench_step": step,
+    "bench_first_touch": first_touch,
 }
 OWN = ("bench_lambda", "bench_assembly", "bench_bandwidth")
 
