@@ -1377,12 +1377,13 @@ _Static_assert((int)BLK == (int)HERM_LANES, "a block's Hermitian problems go to 
 
 /* cos x, 1 - cos x and sin x of x[0..BLK), each to about an ulp absolute and
  * the versine, near x = 0, also relative (1 - cos x computed as such loses
- * it; measured against long double sinl, cosl at 6e6 points: 0.21 ulp
- * absolute for cos and sin, 2.5 ulps relative for the versine): x reduced to |r| <= pi/4 by n = nearest(x 2/pi) with pi/2 in two
- * parts (fdlibm's split: the first 33 bits, so that n pi/2 is exact for |n| <
- * 2^20, then the rest), Taylor series of sin r and 1 - cos r to r^17 and r^18
- * (the next terms are below 1e-19 at pi/4), then the quadrant, without
- * branches.  libm beyond |x| = 1e5 (far outside the Brillouin zone). */
+ * it; against long double sinl, cosl at 6e6 points: 0.21 ulp absolute for
+ * cos and sin, 2.5 ulps relative for the versine): x reduced to |r| <= pi/4
+ * by n = nearest(x 2/pi) with pi/2 in two parts (fdlibm's split: the first
+ * 33 bits, so that n pi/2 is exact for |n| < 2^20, then the rest), Taylor
+ * series of sin r and 1 - cos r to r^17 and r^18 (the next terms are below
+ * 1e-19 at pi/4), then the quadrant, without branches.  libm beyond
+ * |x| = 1e5 (far outside the Brillouin zone). */
 MFS_CLONES static void sincos_v(const double *x, double *c, double *v, double *s)
 {
   static const double two_pi = 6.36619772367581382433e-01, /* 2 / pi */
@@ -2067,9 +2068,8 @@ static void eval_points(const mfs_disp_plan *dp, const disp_stress *at, size_t s
         ky[p] = k0[p] * M_PI * s;
       }
     phases_lanes(dp, BLK, kx, ky, ph1, ph2);
-    const double mij = dp->mij;
-    for (int p = 0; p < BLK; p++) { /* long_wave of each lane, in a loop that vectorizes */
-      lw[p] = mij * (fabs(ph1[p]) + fabs(ph2[p])) <= M_PI_2 ? 1.0 : 0.0;
+    for (int p = 0; p < BLK; p++) { /* every lane, in a loop that vectorizes */
+      lw[p] = long_wave(dp, ph1[p], ph2[p]) ? 1.0 : 0.0;
       idx[p] = i0 + (size_t)p;
     }
     for (int p = 0; p < np; p++)
