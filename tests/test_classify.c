@@ -103,6 +103,19 @@ static void one_d(void)
   c = classify1(p, 0.3, 1);
   CHECK(c.longwave_deviation < 1e-8, "consistent frame long-wave deviation %g", c.longwave_deviation);
   mfs_disp_plan_free(p);
+  /* the place of the minimum where it is a rounding's size: cubic MLS, nodal,
+   * D = 3, unstressed, zeros at kappa = 0 and at the spurious zero kappa = 1
+   * (rank deficiency), omega^2 a few 1e-17 either side of 0: the first
+   * sample (kappa = 0), not whichever zero the rounding makes lower (it was
+   * kappa = 1 with this build's rounding before the tie rule) */
+  p = plan(1, "nodal", &mfs_kernel_cubic, &mfs_shape_mls, 3.0, MFS_FRAME_EULERIAN, NULL, 1, 1);
+  c = classify1(p, 0.0, 1);
+  CHECK((c.labels & MFS_LABEL_RANK_DEFICIENCY) && !c.unstable && fabs(c.min_omega2) < 1e-14,
+        "D = 3 unstressed: stable, rank-deficient, least omega2 %g (labels %u)", c.min_omega2,
+        c.labels);
+  CHECK(c.kappa_at_min == 0.0 && c.theta_at_min == 0, "D = 3 unstressed: the least omega2 at "
+        "kappa %g (the first sample, 0)", c.kappa_at_min);
+  mfs_disp_plan_free(p);
 }
 
 static void two_d(void)

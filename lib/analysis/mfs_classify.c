@@ -207,6 +207,12 @@ mfs_status mfs_classify(const mfs_disp_plan *pl, const mfs_sampling *smp, const 
   double scale = extreme(pl, 0.0, &(mfs_sampling){.theta = smp->theta, .ntheta = smp->ntheta}, 0,
                          200, 1, red);
   const double tol = 1e-10 * scale;
+  /* the worst samples' place: a later sample replaces the one kept only if
+   * it is beyond it by more than 1e-12 of the scale, so that samples equal
+   * but for rounding (mirror images, zeros of the rounding's size) give the
+   * same place whatever the rounding of the machine and the build (the
+   * extremes themselves are exact) */
+  const double tie = 1e-12 * scale, tie_g = 1e-12 * sqrt(scale);
   double onset_t = onset(pl, +1, smp, nk, tol, red);
   double onset_c = onset(pl, -1, smp, nk, tol, red);
   for (size_t si = 0; si < nsbar && st == MFS_OK; si++) {
@@ -224,6 +230,7 @@ mfs_status mfs_classify(const mfs_disp_plan *pl, const mfs_sampling *smp, const 
                    .onset_tension = onset_t,
                    .onset_compression = onset_c};
     int nzero0 = 0;
+    double at_min = INFINITY, at_growth = 0.0; /* the values at the places kept */
     for (size_t t = 0; t < smp->ntheta && st == MFS_OK; t++) {
       double th = smp->theta[t], km = mfs_disp_kappa_max(pl, th);
       st = ray_samples(pl, sb, smp, t, w, cst);
@@ -233,8 +240,9 @@ mfs_status mfs_classify(const mfs_disp_plan *pl, const mfs_sampling *smp, const 
         for (int b = 0; b < nb; b++) {
           double complex w2 = w[(size_t)i * nb + b], wr = csqrt(w2);
           double re = creal(w2), g = fabs(cimag(wr));
-          if (re < c.min_omega2) {
-            c.min_omega2 = re;
+          c.min_omega2 = re < c.min_omega2 ? re : c.min_omega2;
+          if (re < at_min - tie) {
+            at_min = re;
             c.kappa_at_min = kap;
             c.theta_at_min = (int)t;
           }
@@ -244,8 +252,9 @@ mfs_status mfs_classify(const mfs_disp_plan *pl, const mfs_sampling *smp, const 
                                                                           : c.unstable_kappa_from;
             c.unstable_kappa_to =
               isnan(c.unstable_kappa_to) || kap > c.unstable_kappa_to ? kap : c.unstable_kappa_to;
-            if (g > c.max_growth) {
-              c.max_growth = g;
+            c.max_growth = g > c.max_growth ? g : c.max_growth;
+            if (g > at_growth + tie_g) {
+              at_growth = g;
               c.kappa_at_max_growth = kap;
               c.theta_at_max_growth = (int)t;
             }

@@ -74,7 +74,11 @@ typedef struct {
 
 /* The classification at one stress.  NAN marks an undefined value (no
  * unstable wave, no zero, no onset); *_theta are indices into
- * mfs_sampling.theta (-1 where undefined). */
+ * mfs_sampling.theta (-1 where undefined).  min_omega2 and max_growth are
+ * the exact extremes; their places (kappa_at_*, theta_at_*) the first sample
+ * in order that no later one beats by more than 1e-12 of the scale (max
+ * |omega^2| at sbar = 0; its square root for the growth), so that samples
+ * equal but for rounding give the same place on every machine. */
 typedef struct {
   double sbar;
   double min_omega2, kappa_at_min;
