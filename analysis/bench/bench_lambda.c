@@ -44,6 +44,7 @@
 #include <string.h>
 
 #include "bench_common.h"
+#include "bench_plate.h"
 #include "mfstab.h"
 
 int main(int argc, char **argv)
@@ -83,14 +84,7 @@ int main(int argc, char **argv)
     fprintf(stderr, "bench_lambda: NX, NY must be >= 3 and --tol >= 0\n");
     return 2;
   }
-  mfs_model_spec s = mfs_model_spec_default();
-  s.disc.dim = 2;
-  s.disc.source = (mfs_source){.lattice = MFS_LATTICE_SQUARE, .nx = nx, .ny = ny,
-                               .lx = (double)(nx - 1), .ly = (double)(ny - 1)};
-  s.disc.dilation = 2.0;
-  s.disc.quadrature = &mfs_quad_stress_quad;
-  s.disc.material.physics = MFS_PHYS_PLANE_STRAIN;
-  s.disc.material.poisson = 0.3;
+  mfs_model_spec s = bench_plate_spec(nx, ny);
 
   double t0 = bench_now();
   mfs_status st;

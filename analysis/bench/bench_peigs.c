@@ -28,6 +28,7 @@
 #include <sys/resource.h>
 
 #include "mfstab.h"
+#include "bench_plate.h"
 
 static double peak_mb(void)
 {
@@ -81,14 +82,7 @@ int main(int argc, char **argv)
     else if (strcmp(argv[i], "--tol") == 0 && i + 1 < argc)
       tol = atof(argv[++i]);
   }
-  mfs_model_spec s = mfs_model_spec_default();
-  s.disc.dim = 2;
-  s.disc.source = (mfs_source){.lattice = MFS_LATTICE_SQUARE, .nx = nx, .ny = ny,
-                               .lx = (double)(nx - 1), .ly = (double)(ny - 1)};
-  s.disc.dilation = 2.0;
-  s.disc.quadrature = &mfs_quad_stress_quad;
-  s.disc.material.physics = MFS_PHYS_PLANE_STRAIN;
-  s.disc.material.poisson = 0.3;
+  mfs_model_spec s = bench_plate_spec(nx, ny);
   mfs_eig_opts eo = {20, 0, tol};
   mfs_eig_info info;
   mfs_gershgorin_result g;

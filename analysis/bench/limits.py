@@ -193,6 +193,16 @@ def first_touch(row, bw):
     return "bytes", mb * 1048576.0 / bw[1], s
 
 
+def phases(row, bw):
+    """bench_phases: each row's bytes (the Lanczos call's products, its
+    products alone, the read of as many bytes) at the one-thread bandwidth;
+    the compute rows move no memory: none."""
+    b, s = f(row, "bytes"), f(row, "seconds")
+    if not b:
+        return "none", None, s
+    return "bytes", b / bw[1], s
+
+
 def none(row, bw):
     for k in ("seconds", "total_s", "wall_s", "seconds_median", "eval_s"):
         if f(row, k) is not None:
@@ -210,6 +220,7 @@ RULES = {
     "bench_check": check,
     "bench_step": step,
     "bench_first_touch": first_touch,
+    "bench_phases": phases,
 }
 OWN = ("bench_lambda", "bench_assembly", "bench_bandwidth")
 

@@ -22,7 +22,7 @@ matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
 
 LABEL_COLS = ("tool", "phase", "case", "method", "kernel", "scheme", "blas", "frame", "family",
-              "comparison", "command", "scene", "rule")
+              "comparison", "command", "scene", "rule", "kind", "pages")
 # a second fraction of the same rows (limits.py): its own bar, labelled by the suffix
 EXTRA = {"dispersion_numpy": (("numpy_fraction", "numpy"),),
          "table4": (("cd1_fraction", "cd1"),)}
