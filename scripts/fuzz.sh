@@ -18,13 +18,13 @@ if [ ! -f "$bdir/build.ninja" ]; then
   CC=$cc meson setup "$bdir" -Dfuzz=true -Db_sanitize=address,undefined -Db_lundef=false \
     -Dbuildtype=debugoptimized >"$bdir.setup.log" 2>&1 || { cat "$bdir.setup.log"; exit 1; }
 fi
-ninja -C "$bdir" tests/fuzz/fuzz_scene tests/fuzz/fuzz_options >"$bdir/fuzz-build.log" 2>&1 ||
+ninja -C "$bdir" tests/fuzz/fuzz_scene tests/fuzz/fuzz_options tests/fuzz/fuzz_particles >"$bdir/fuzz-build.log" 2>&1 ||
   { cat "$bdir/fuzz-build.log"; exit 1; }
 pass=0
 fail=0
 export UBSAN_OPTIONS=halt_on_error=1:print_stacktrace=1
 export ASAN_OPTIONS=detect_leaks=1
-for t in scene options; do
+for t in scene options particles; do
   work=$bdir/fuzz-$t
   mkdir -p "$work/corpus" "$work/artifacts"
   "$bdir/tests/fuzz/fuzz_$t" -max_total_time="$secs" -close_fd_mask=3 -rss_limit_mb=4096 \

@@ -255,6 +255,55 @@ static void test_close_pair(gsl_rng *r)
   free(x);
 }
 
+/* A set with one particle 10^108 away (a fuzzer's finding: the cells of
+ * the duplicate test, thinned in proportion over both directions, left 2^31
+ * cells along the far one, and the bounding box's spacing made every pair
+ * a duplicate): the grid's cells stay within 4 n + 4, the bulk spacing is
+ * the lattice's, and close_pair finds the real pair and no other. */
+static void test_far_particle(void)
+{
+  enum { M = 40 };
+  size_t n = M * M + 2;
+  double *x = malloc(2 * n * sizeof *x);
+  CHECK(x != NULL, "far particle: allocation");
+  if (!x)
+    return;
+  for (int i = 0; i < M; i++)
+    for (int j = 0; j < M; j++) {
+      x[2 * (i * M + j)] = 0.01 * i;
+      x[2 * (i * M + j) + 1] = 0.01 * j;
+    }
+  x[2 * M * M] = 0.25; /* off the lattice for now; the duplicate below */
+  x[2 * M * M + 1] = 0.255;
+  x[2 * M * M + 2] = 0.5;
+  x[2 * M * M + 3] = 1e108;
+  mfs_point_set s = {.dim = 2, .n = n, .x = x};
+  mfs_box box = {.dim = 2, .lo = {0.0, 0.0}, .hi = {0.5, 1e108}};
+  mfs_status st;
+  mfs_grid *g = mfs_grid_alloc(2, n, x, &box, 1e54, &st);
+  CHECK(g && (double)g->nc[0] * g->nc[1] <= 4.0 * n + 4.0, "far particle: %d x %d cells for %zu",
+        g ? g->nc[0] : 0, g ? g->nc[1] : 0, n);
+  mfs_grid_free(g);
+  double h = mfs_point_set_bulk_spacing(&s);
+  CHECK(h > 0.009 && h < 0.011, "far particle: bulk spacing %.6g, the lattice's 0.01", h);
+  int found = 1;
+  size_t i = 0, j = 0;
+  CHECK(mfs_point_set_close_pair(&s, 1e-10 * h, &found, &i, &j) == MFS_OK && !found,
+        "far particle: no pair closer than 1e-12 (found %d: %zu %zu)", found, i, j);
+  x[2 * M * M + 1] = 0.25; /* now on lattice particle 25 * M + 25 */
+  CHECK(mfs_point_set_close_pair(&s, 1e-10 * h, &found, &i, &j) == MFS_OK && found &&
+          i == 25 * M + 25 && j == M * M,
+        "far particle: the duplicate %zu %zu (found %d)", i, j, found);
+  x[0] = INFINITY;
+  CHECK(mfs_point_set_close_pair(&s, 1e-10 * h, &found, &i, &j) == MFS_EINVAL &&
+          isnan(mfs_point_set_bulk_spacing(&s)),
+        "a coordinate not finite: EINVAL, NAN");
+  double flat[10] = {0, 0, 0, 1, 0, 2, 0, 3, 1, 0}; /* four of five on x = 0 */
+  mfs_point_set sf = {.dim = 2, .n = 5, .x = flat};
+  CHECK(isnan(mfs_point_set_bulk_spacing(&sf)), "a flat bulk: NAN");
+  free(x);
+}
+
 static int cmp_double(const void *a, const void *b)
 {
   double x = *(const double *)a, y = *(const double *)b;
@@ -313,6 +362,7 @@ int main(void)
   test_lattice_as_points();
   test_quadrature(r);
   test_close_pair(r);
+  test_far_particle();
   test_spacing_median(r);
   test_errors();
   gsl_rng_free(r);

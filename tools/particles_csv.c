@@ -45,11 +45,6 @@ static int split(char *line, char **f, int max)
 
 /* ---- group labels: a small open-addressing hash ---------------------- */
 
-typedef struct {
-  int *slot; /* cap entries: group id + 1, or 0 */
-  size_t cap;
-} label_map;
-
 static uint64_t hash_str(const char *s)
 {
   uint64_t h = 1469598103934665603ULL;
@@ -60,10 +55,11 @@ static uint64_t hash_str(const char *s)
   return h;
 }
 
-static int label_id(particle_file *pf, label_map *m, const char *s)
+/* The id of label s, a new one when it is new (the hash in pf->label_slot). */
+static int label_id(particle_file *pf, const char *s)
 {
-  if ((size_t)(pf->ngroups + 1) * 2 > m->cap) { /* grow and rehash */
-    size_t cap = m->cap ? 2 * m->cap : 64;
+  if ((size_t)(pf->ngroups + 1) * 2 > pf->label_cap) { /* grow and rehash */
+    size_t cap = pf->label_cap ? 2 * pf->label_cap : 64;
     int *slot = mfs_calloc(cap, sizeof *slot);
     if (!slot)
       cli_die(1, "out of memory");
@@ -73,15 +69,16 @@ static int label_id(particle_file *pf, label_map *m, const char *s)
         i = (i + 1) & (cap - 1);
       slot[i] = g + 1;
     }
-    mfs_free(m->slot);
-    m->slot = slot;
-    m->cap = cap;
+    mfs_free(pf->label_slot);
+    pf->label_slot = slot;
+    pf->label_cap = cap;
   }
-  size_t i = hash_str(s) & (m->cap - 1);
-  while (m->slot[i]) {
-    if (strcmp(pf->names[m->slot[i] - 1], s) == 0)
-      return m->slot[i] - 1;
-    i = (i + 1) & (m->cap - 1);
+  int *slot = pf->label_slot;
+  size_t i = hash_str(s) & (pf->label_cap - 1);
+  while (slot[i]) {
+    if (strcmp(pf->names[slot[i] - 1], s) == 0)
+      return slot[i] - 1;
+    i = (i + 1) & (pf->label_cap - 1);
   }
   char **nn = mfs_realloc(pf->names, (size_t)(pf->ngroups + 1) * sizeof *nn);
   if (!nn)
@@ -89,7 +86,7 @@ static int label_id(particle_file *pf, label_map *m, const char *s)
   pf->names = nn;
   if (!(pf->names[pf->ngroups] = mfs_strdup(s)))
     cli_die(1, "out of memory");
-  m->slot[i] = ++pf->ngroups;
+  slot[i] = ++pf->ngroups;
   return pf->ngroups - 1;
 }
 
@@ -139,17 +136,16 @@ void particle_file_read(particle_file *pf, const char *path, double min_dist)
 {
   memset(pf, 0, sizeof *pf);
   pf->path = path;
-  FILE *f = fopen(path, "r");
+  FILE *f = pf->file = fopen(path, "r");
   if (!f)
     cli_die(2, "--particles %s: cannot open the file (%s)", path, strerror(errno));
-  char *buf = NULL;
   size_t len = 0, ln = 0, cap = 0;
   ssize_t got;
   int col[NCOLS], ncol = 0, header = 0;
   int where[NCOLS] = {-1, -1, -1, -1}; /* field index of each column */
-  label_map map = {NULL, 0};
-  char *fields[8];
-  while ((got = getline(&buf, &len, f)) >= 0) {
+  char *fields[8], *buf;
+  while ((got = getline(&pf->buf, &len, f)) >= 0) {
+    buf = pf->buf;
     ln++;
     if (got > 0 && buf[got - 1] == '\n')
       buf[--got] = '\0';
@@ -211,7 +207,7 @@ void particle_file_read(particle_file *pf, const char *path, double min_dist)
       case COL_GROUP:
         if (fields[i][0] == '\0')
           cli_die(2, "%s:%zu: group: empty label", path, ln);
-        pf->group[I] = label_id(pf, &map, fields[i]);
+        pf->group[I] = label_id(pf, fields[i]);
         break;
       }
     }
@@ -219,9 +215,13 @@ void particle_file_read(particle_file *pf, const char *path, double min_dist)
     pf->n++;
   }
   int rerr = ferror(f), eof = feof(f);
-  mfs_free_libc(buf); /* getline's: the C library's */
-  mfs_free(map.slot);
+  mfs_free_libc(pf->buf); /* getline's: the C library's */
+  mfs_free(pf->label_slot);
   fclose(f);
+  pf->buf = NULL;
+  pf->label_slot = NULL;
+  pf->label_cap = 0;
+  pf->file = NULL;
   if (rerr)
     cli_die(2, "--particles %s: read error", path);
   if (!eof) /* getline stopped before the end: its memory */
@@ -237,9 +237,12 @@ void particle_file_read(particle_file *pf, const char *path, double min_dist)
   if (pf->n > 100000000)
     cli_die(2, "%s: %zu particles: more than 10^8", path, pf->n);
   pf->set = (mfs_point_set){.dim = pf->dim, .n = pf->n, .x = pf->x, .vol = pf->vol};
-  /* duplicates: two particles closer than min_dist of the mean spacing (cell lists) */
-  double dx = 0.0;
-  {
+  /* duplicates: two particles closer than min_dist of the typical spacing
+   * (cell lists).  The spacing of the bulk: from the bounding box, one far
+   * particle made it so large that every pair counted as a duplicate; the
+   * box's where the bulk has none (a flat set, fewer than 4 particles) */
+  double dx = mfs_point_set_bulk_spacing(&pf->set);
+  if (!(dx > 0.0)) {
     mfs_disc d = mfs_disc_default();
     d.dim = pf->dim;
     d.source = (mfs_source){.lattice = MFS_LATTICE_POINTS, .points = &pf->set};
@@ -264,11 +267,57 @@ void particle_file_read(particle_file *pf, const char *path, double min_dist)
   }
 }
 
+static int cmp_double(const void *a, const void *b)
+{
+  double x = *(const double *)a, y = *(const double *)b;
+  return (x > y) - (x < y);
+}
+
+/* The particle farthest from the set's median point and its distance in
+ * typical spacings of the bulk (0 if it cannot be told), for the message
+ * when the set has no triangulation: a particle 10^9 spacings away (a
+ * coordinate with the wrong unit or exponent) leaves Qhull no room for the
+ * others. */
+static double far_particle(const particle_file *pf, size_t *far)
+{
+  double h = mfs_point_set_bulk_spacing(&pf->set), med[2] = {0.0, 0.0}, best = 0.0;
+  double *c = mfs_malloc(pf->n * sizeof *c);
+  *far = 0;
+  if (!(h > 0.0) || !c) {
+    mfs_free(c);
+    return 0.0;
+  }
+  for (int k = 0; k < pf->dim; k++) { /* an error's path: a sort will do */
+    for (size_t I = 0; I < pf->n; I++)
+      c[I] = pf->x[I * (size_t)pf->dim + (size_t)k];
+    qsort(c, pf->n, sizeof *c, cmp_double);
+    med[k] = c[pf->n / 2];
+  }
+  mfs_free(c);
+  for (size_t I = 0; I < pf->n; I++) {
+    double d = 0.0;
+    for (int k = 0; k < pf->dim; k++)
+      d = fmax(d, fabs(pf->x[I * (size_t)pf->dim + (size_t)k] - med[k]));
+    if (d > best) {
+      best = d;
+      *far = I;
+    }
+  }
+  return best / h;
+}
+
 void particle_file_volumes(particle_file *pf)
 {
   if (!pf->vol) {
     mfs_status st;
     mfs_particles *p = mfs_particles_from_set(&pf->set, 0, &st);
+    size_t far = 0;
+    double away = !p && st == MFS_EDOMAIN && pf->dim == 2 ? far_particle(pf, &far) : 0.0;
+    if (away > 1e6)
+      cli_die(2, "%s:%zu: the particle at (%.17g, %.17g) is %.3g typical spacings from the "
+                 "middle of the set: no Delaunay triangulation; check its coordinates, or give a "
+                 "volume column",
+              pf->path, pf->line[far], pf->x[2 * far], pf->x[2 * far + 1], away);
     if (!p && st == MFS_EDOMAIN)
       cli_die(2, "%s: the particles have no Delaunay triangulation (all on a line?); give a volume "
                  "column",
@@ -288,6 +337,10 @@ void particle_file_volumes(particle_file *pf)
 
 void particle_file_free(particle_file *pf)
 {
+  if (pf->file)
+    fclose(pf->file);
+  mfs_free_libc(pf->buf);
+  mfs_free(pf->label_slot);
   mfs_free(pf->x);
   mfs_free(pf->vol);
   mfs_free(pf->group);

@@ -15,6 +15,7 @@
 #define MFSTAB_PARTICLES_CSV_H
 
 #include <stddef.h>
+#include <stdio.h>
 
 #include "mfstab.h"
 
@@ -30,6 +31,13 @@ typedef struct {
   size_t *line;        /* n: the file line of each particle (the header is line 1) */
   int dual_volumes;    /* the file had no volume column: vol holds the set's dual volumes */
   mfs_point_set set;   /* the arrays above, for the library */
+  /* the reader's own while it reads (NULL after it): particle_file_free
+   * releases them too, so that a caller who catches cli_die (the fuzzer,
+   * tests/fuzz/fuzz_particles.c) leaks nothing */
+  FILE *file;
+  char *buf;           /* getline's line buffer (the C library's memory) */
+  int *label_slot;     /* the group labels' hash: label_cap entries, group id + 1 or 0 */
+  size_t label_cap;
 } particle_file;
 
 /* Read path (dies with exit 2 and one line on any error).  min_dist: two
@@ -42,6 +50,7 @@ void particle_file_read(particle_file *pf, const char *path, double min_dist);
  * particles have no triangulation), computed once; and its typical spacing
  * (mfs_point_set_spacing) into pf->set.spacing. */
 void particle_file_volumes(particle_file *pf);
+/* Everything pf holds, also after particle_file_read died part way. */
 void particle_file_free(particle_file *pf);
 
 /* The fix mask of "--fix A[,B...]": 1 for the particles of those groups

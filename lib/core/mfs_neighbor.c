@@ -85,16 +85,30 @@ mfs_grid *mfs_grid_alloc(int dim, size_t n, const double *x, const mfs_box *box,
     if (!(want[k] >= 1.0))
       want[k] = 1.0;
   }
-  /* at most about 4 n + 4 cells in all (a sparse set in a large box): the
-   * directions are thinned in proportion */
-  double total = 1.0, cap = 4.0 * (double)n + 4.0;
+  /* at most 4 n + 4 cells in all (a sparse set in a large box): the
+   * directions are thinned in proportion, then the finest ones again until
+   * the product is within the cap (a direction at one cell takes no share
+   * of the thinning: one far point on an axis made 2^31 cells) */
+  double total = 1.0, cap = 4.0 * (double)n + 4.0, ncd[3] = {1.0, 1.0, 1.0};
   for (int k = 0; k < dim; k++)
     total *= want[k];
   double shrink = total > cap ? pow(cap / total, 1.0 / dim) : 1.0;
+  total = 1.0;
+  for (int k = 0; k < dim; k++) {
+    ncd[k] = fmax(1.0, fmin(floor(want[k] * shrink), (double)INT_MAX));
+    total *= ncd[k];
+  }
+  while (total > cap) {
+    int m = 0;
+    for (int k = 1; k < dim; k++)
+      m = ncd[k] > ncd[m] ? k : m;
+    double t = fmax(1.0, floor(ncd[m] * cap / total));
+    total = total / ncd[m] * t;
+    ncd[m] = t;
+  }
   for (int k = 0; k < dim; k++) {
     double L = box->hi[k] - box->lo[k], hmin = 0.5 * radius * (1.0 + 1e-6);
-    double ncd = floor(want[k] * shrink);
-    int nc = ncd < 1.0 ? 1 : (int)fmin(ncd, (double)INT_MAX);
+    int nc = (int)ncd[k];
     g->nc[k] = nc;
     g->h[k] = L > 0.0 ? L / nc : 1.0;
     if (!box->periodic && g->h[k] < hmin)

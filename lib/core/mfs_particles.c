@@ -454,17 +454,17 @@ static double key_value(uint64_t k)
   return v;
 }
 
-/* The k-th smallest (from 0) of v[0..n), by radix selection on the keys,
+/* The k-th smallest (from 0) of v[0], v[stride], ... (n values), by radix selection on the keys,
  * eight bits a pass from the top: 8 passes over v, a 256-bin histogram on
  * the stack, no copy (so nothing to allocate, nothing that can fail).  k is
  * kept as the rank among the values whose keys share the digits chosen. */
-static double kth_smallest(const double *v, size_t n, size_t k)
+static double kth_smallest(const double *v, size_t n, size_t stride, size_t k)
 {
   uint64_t prefix = 0, mask = 0;
   for (int shift = 56; shift >= 0; shift -= 8) {
     size_t cnt[256] = {0};
     for (size_t i = 0; i < n; i++) {
-      uint64_t key = order_key(v[i]);
+      uint64_t key = order_key(v[i * stride]);
       if ((key & mask) == prefix)
         cnt[(key >> shift) & 255u]++;
     }
@@ -482,10 +482,51 @@ double mfs_point_set_spacing(const mfs_point_set *s)
   if (!s || !s->vol || s->n < 1)
     return NAN;
   size_t k = s->n / 2;
-  double med = kth_smallest(s->vol, s->n, k);
+  double med = kth_smallest(s->vol, s->n, 1, k);
   if (s->n % 2 == 0) /* the largest of the lower half */
-    med = 0.5 * (med + kth_smallest(s->vol, s->n, k - 1));
+    med = 0.5 * (med + kth_smallest(s->vol, s->n, 1, k - 1));
   return s->dim == 1 ? med : sqrt(med);
+}
+
+/* The quartiles q1 <= q3 of each coordinate (ranks (n - 1) / 4 and
+ * 3 (n - 1) / 4) and the number of particles in the box between them. */
+static size_t quartile_box(const mfs_point_set *s, double q1[2], double q3[2])
+{
+  int dim = s->dim;
+  size_t n = s->n, in = 0;
+  for (int k = 0; k < dim; k++) {
+    q1[k] = kth_smallest(s->x + k, n, (size_t)dim, (n - 1) / 4);
+    q3[k] = kth_smallest(s->x + k, n, (size_t)dim, 3 * (n - 1) / 4);
+  }
+  for (size_t i = 0; i < n; i++) {
+    int inside = 1;
+    for (int k = 0; k < dim; k++) {
+      double v = s->x[i * (size_t)dim + (size_t)k];
+      inside &= v >= q1[k] && v <= q3[k];
+    }
+    in += (size_t)inside;
+  }
+  return in;
+}
+
+static int coords_finite(const mfs_point_set *s)
+{
+  for (size_t i = 0; i < s->n * (size_t)s->dim; i++)
+    if (!isfinite(s->x[i]))
+      return 0;
+  return 1;
+}
+
+double mfs_point_set_bulk_spacing(const mfs_point_set *s)
+{
+  if (!s || (s->dim != 1 && s->dim != 2) || !s->x || s->n < 4 || !coords_finite(s))
+    return NAN;
+  double q1[2], q3[2];
+  size_t in = quartile_box(s, q1, q3);
+  if (s->dim == 1)
+    return q3[0] > q1[0] && in >= 2 ? (q3[0] - q1[0]) / (double)(in - 1) : NAN;
+  double area = (q3[0] - q1[0]) * (q3[1] - q1[1]);
+  return area > 0.0 && isfinite(area) && in >= 2 ? sqrt(area / (double)in) : NAN;
 }
 
 mfs_status mfs_point_set_close_pair(const mfs_point_set *s, double r, int *found, size_t *i,
@@ -498,9 +539,13 @@ mfs_status mfs_point_set_close_pair(const mfs_point_set *s, double r, int *found
   size_t n = s->n;
   if (n < 2)
     return MFS_OK;
+  if (!coords_finite(s))
+    return MFS_EINVAL;
   int dim = s->dim;
   mfs_box box = {.dim = dim, .periodic = 0};
-  double meas = 1.0;
+  double meas = 1.0, q1[2] = {0.0, 0.0}, q3[2] = {0.0, 0.0};
+  if (n >= 4)
+    quartile_box(s, q1, q3);
   for (int k = 0; k < dim; k++) {
     box.lo[k] = box.hi[k] = s->x[k];
     for (size_t q = 1; q < n; q++) {
@@ -508,11 +553,20 @@ mfs_status mfs_point_set_close_pair(const mfs_point_set *s, double r, int *found
       box.lo[k] = v < box.lo[k] ? v : box.lo[k];
       box.hi[k] = v > box.hi[k] ? v : box.hi[k];
     }
+    /* the grid over the bulk, the quartiles widened by their distance on
+     * each side: a few far particles go to the edge cells (the cells clamp)
+     * instead of stretching every cell, which put the bulk in one cell */
+    double w = q3[k] - q1[k];
+    if (n >= 4 && w > 0.0) {
+      box.lo[k] = fmax(box.lo[k], q1[k] - w);
+      box.hi[k] = fmin(box.hi[k], q3[k] + w);
+    }
     double L = box.hi[k] - box.lo[k];
-    meas *= L > 0.0 ? L : 1.0;
+    meas *= L > 0.0 && isfinite(L) ? L : 1.0;
   }
   /* cells of about the mean spacing, so that their count stays O(n), and at
-   * least 2r: a pair closer than r lies in one cell or two adjacent ones */
+   * least 2r: a pair closer than r lies in one cell or two adjacent ones
+   * (also through the clamping: it keeps the order of the cells) */
   double R = dim == 1 ? meas / (double)n : sqrt(meas / (double)n);
   R = R > 2.0 * r ? R : 2.0 * r;
   mfs_status st;

@@ -146,9 +146,20 @@ double mfs_point_set_spacing(const mfs_point_set *s);
  * triangulation, all particles on a line), MFS_ENOMEM. */
 mfs_particles *mfs_particles_from_set(const mfs_point_set *s, int cells, mfs_status *status);
 
-/* Two particles of the set closer than r > 0, found with cell lists (O(n)):
- * *found = 1 and *i < *j their indices, or *found = 0.  MFS_OK, MFS_EINVAL,
- * MFS_ENOMEM. */
+/* The typical spacing of a set from its coordinates alone, robust to a few
+ * far particles (a bounding box is not: one particle 10^8 spacings away
+ * makes its spacing 10^4 times too large): the box between the quartiles of
+ * each coordinate, its length over the particles in it less one (1D), the
+ * square root of its area over the particles in it (2D).  NAN for fewer
+ * than 4 particles, a coordinate not finite, or a flat box (half the
+ * particles or more on one coordinate value).  Allocates nothing. */
+double mfs_point_set_bulk_spacing(const mfs_point_set *s);
+
+/* Two particles of the set closer than r > 0, found with cell lists (O(n);
+ * the cells over the bulk of the set, so that a few far particles do not
+ * gather it into one cell): *found = 1 and *i < *j their indices (the pair
+ * of least indices), or *found = 0.  MFS_OK, MFS_EINVAL (also for a
+ * coordinate not finite), MFS_ENOMEM. */
 mfs_status mfs_point_set_close_pair(const mfs_point_set *s, double r, int *found, size_t *i,
                                     size_t *j);
 

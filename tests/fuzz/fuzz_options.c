@@ -7,28 +7,20 @@
  * The input is the command line, one argument per line (at most 32).  A
  * refusal (cli_die) returns to the fuzzer through cli_die_hook; a crash, a
  * sanitizer report or a leak is a finding. */
+#include "fuzz_common.h" /* first: it defines _GNU_SOURCE (memfd_create) */
+
 #include <math.h>
-#include <setjmp.h>
 #include <stdint.h>
 #include <stdlib.h>
 #include <string.h>
 
-#include "cli.h"
 #include "mfs_alloc.h"
 #include "mfstab.h"
-
-static jmp_buf back;
-
-static void die_hook(int code)
-{
-  longjmp(back, code ? code : 1);
-}
 
 int LLVMFuzzerInitialize(int *argc, char ***argv)
 {
   (void)argc, (void)argv;
-  cli_command = "fuzz";
-  cli_die_hook = die_hook;
+  fuzz_catch_refusals("fuzz");
   return 0;
 }
 
@@ -115,7 +107,7 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
   cli_group groups[] = {{cli_disc_opts, &o, seen_disc},
                         {cli_physics_opts, &o, seen_phys},
                         {extra, &e, seen_extra}};
-  if (setjmp(back) == 0) {
+  if (setjmp(fuzz_back) == 0) {
     cli_parse(argc, argv, "usage: fuzz [OPTIONS]", "", groups, 3);
     mfs_disc d = cli_disc_build(&o, seen_disc);
     const char *field = NULL;

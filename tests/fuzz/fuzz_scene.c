@@ -6,35 +6,22 @@
  * sanitizer report, a leak or a non-finite energy after a successful build
  * is a finding.  Built with -Dfuzz=true by clang (tests/fuzz/meson.build);
  * run by scripts/fuzz.sh. */
-#define _GNU_SOURCE
+#include "fuzz_common.h" /* first: it defines _GNU_SOURCE (memfd_create) */
+
 #include <math.h>
-#include <setjmp.h>
 #include <stdint.h>
 #include <stdlib.h>
-#include <sys/mman.h>
-#include <unistd.h>
 
-#include "cli.h"
 #include "scene.h"
 
-static jmp_buf back;
 static int fd = -1;
 static char path[64];
-
-static void die_hook(int code)
-{
-  longjmp(back, code ? code : 1);
-}
 
 int LLVMFuzzerInitialize(int *argc, char ***argv)
 {
   (void)argc, (void)argv;
-  fd = memfd_create("scene.ini", 0);
-  if (fd < 0)
-    abort();
-  snprintf(path, sizeof path, "/proc/self/fd/%d", fd);
-  cli_command = "run";
-  cli_die_hook = die_hook;
+  fd = fuzz_file_open("scene.ini", path);
+  fuzz_catch_refusals("run");
   return 0;
 }
 
@@ -63,10 +50,9 @@ static void try_steps(scene *sc)
 
 int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
 {
-  if (ftruncate(fd, 0) != 0 || pwrite(fd, data, size, 0) != (ssize_t)size)
-    abort();
+  fuzz_file_write(fd, data, size);
   static scene sc; /* static: it survives the longjmp */
-  if (setjmp(back) == 0) {
+  if (setjmp(fuzz_back) == 0) {
     scene_load(&sc, path);
     scene_finish(&sc);
     try_steps(&sc);
