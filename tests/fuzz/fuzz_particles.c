@@ -8,7 +8,12 @@
  * cli_die_hook and particle_file_free releases what the reader held; a
  * crash, a sanitizer report or a leak is a finding, and so is a set accepted
  * with a volume or spacing that is not finite and positive (every result
- * that needs masses would be wrong: mfstab must refuse such a set). */
+ * that needs masses would be wrong: mfstab must refuse such a set).  A set
+ * of at most FUZZ_MAX_MODEL particles then becomes a model as eigs builds
+ * one (mfs_model_alloc: plane strain in 2D, support 2.3 spacings, the
+ * quadrature chosen by the input's length: nodal, stress points or Gauss
+ * points): a refusal is a status, and a model that is built must have a
+ * finite, symmetric stiffness and finite masses. */
 #include "fuzz_common.h" /* first: it defines _GNU_SOURCE (memfd_create) */
 
 #include <math.h>
@@ -30,6 +35,59 @@ int LLVMFuzzerInitialize(int *argc, char ***argv)
 }
 
 static particle_file pf;
+
+#define FUZZ_MAX_MODEL 120
+
+/* Row j's entry in column i (sorted rows), 0 if absent. */
+static double entry(const mfs_csr *K, size_t j, size_t i)
+{
+  size_t lo = K->ptr[j], hi = K->ptr[j + 1];
+  while (lo < hi) {
+    size_t mid = lo + (hi - lo) / 2;
+    if ((size_t)K->idx[mid] < i)
+      lo = mid + 1;
+    else
+      hi = mid;
+  }
+  return lo < K->ptr[j + 1] && (size_t)K->idx[lo] == i ? K->val[lo] : 0.0;
+}
+
+static void try_model(size_t size)
+{
+  static const char *const rules[2][3] = {{"nodal", "stress", "gauss2"},
+                                          {"nodal", "stress-tri", "gauss2"}};
+  mfs_model_spec sp = mfs_model_spec_default();
+  mfs_disc *d = &sp.disc;
+  d->dim = pf.dim;
+  d->source = (mfs_source){.lattice = MFS_LATTICE_POINTS, .points = &pf.set};
+  d->quadrature = mfs_quad_find(rules[pf.dim - 1][size % 3]);
+  if (pf.dim == 2) {
+    d->material.physics = MFS_PHYS_PLANE_STRAIN;
+    d->material.poisson = 0.3;
+  }
+  d->support = 2.3 * pf.set.spacing;
+  d->dilation = d->support / mfs_disc_dx(d);
+  sp.fixed = MFS_FIX_NONE;
+  mfs_status st;
+  mfs_model *m = mfs_model_alloc(&sp, &st, NULL);
+  if (!m)
+    return; /* a refusal: the tools name it */
+  const mfs_csr *K = m->K;
+  double kmax = 0.0;
+  for (size_t e = 0; e < K->ptr[m->n]; e++) {
+    if (!isfinite(K->val[e]))
+      __builtin_trap();
+    kmax = fmax(kmax, fabs(K->val[e]));
+  }
+  for (size_t i = 0; i < m->n; i++) {
+    for (size_t e = K->ptr[i]; e < K->ptr[i + 1]; e++)
+      if (fabs(K->val[e] - entry(K, (size_t)K->idx[e], i)) > 1e-10 * kmax)
+        __builtin_trap();
+    if (m->m && !isfinite(m->m[i]))
+      __builtin_trap();
+  }
+  mfs_model_free(m);
+}
 
 int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
 {
@@ -61,6 +119,8 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
     double c[2] = {pf.x[0], pf.dim == 2 ? pf.x[1] : 0.0};
     if (particle_file_line(&pf, particle_file_nearest(&pf, c)) == 0)
       __builtin_trap();
+    if (pf.n <= FUZZ_MAX_MODEL)
+      try_model(size);
   }
   particle_file_free(&pf);
   return 0;
