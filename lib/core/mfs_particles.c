@@ -488,17 +488,21 @@ double mfs_point_set_spacing(const mfs_point_set *s)
   return s->dim == 1 ? med : sqrt(med);
 }
 
-/* The quartiles q1 <= q3 of each coordinate (ranks (n - 1) / 4 and
- * 3 (n - 1) / 4) and the number of particles in the box between them. */
-static size_t quartile_box(const mfs_point_set *s, double q1[2], double q3[2])
+/* The quartiles q1 <= q3 of each coordinate (ranks (m - 1) / 4 and
+ * 3 (m - 1) / 4 of m values: every particle up to 4096 of them, else every
+ * step-th particle, 4096 to 8191 of them: the box only sizes cells and
+ * scales a tolerance, and 8 selection passes over 10^6 particles per
+ * quartile made reading a particle file 0.1-0.2 s slower) and, with count,
+ * the number of particles in the box between them (one pass over all). */
+static size_t quartile_box(const mfs_point_set *s, double q1[2], double q3[2], int count)
 {
   int dim = s->dim;
-  size_t n = s->n, in = 0;
+  size_t n = s->n, in = 0, step = n > 4096 ? n / 4096 : 1, m = (n - 1) / step + 1;
   for (int k = 0; k < dim; k++) {
-    q1[k] = kth_smallest(s->x + k, n, (size_t)dim, (n - 1) / 4);
-    q3[k] = kth_smallest(s->x + k, n, (size_t)dim, 3 * (n - 1) / 4);
+    q1[k] = kth_smallest(s->x + k, m, (size_t)dim * step, (m - 1) / 4);
+    q3[k] = kth_smallest(s->x + k, m, (size_t)dim * step, 3 * (m - 1) / 4);
   }
-  for (size_t i = 0; i < n; i++) {
+  for (size_t i = 0; count && i < n; i++) {
     int inside = 1;
     for (int k = 0; k < dim; k++) {
       double v = s->x[i * (size_t)dim + (size_t)k];
@@ -522,7 +526,7 @@ double mfs_point_set_bulk_spacing(const mfs_point_set *s)
   if (!s || (s->dim != 1 && s->dim != 2) || !s->x || s->n < 4 || !coords_finite(s))
     return NAN;
   double q1[2], q3[2];
-  size_t in = quartile_box(s, q1, q3);
+  size_t in = quartile_box(s, q1, q3, 1);
   if (s->dim == 1)
     return q3[0] > q1[0] && in >= 2 ? (q3[0] - q1[0]) / (double)(in - 1) : NAN;
   double area = (q3[0] - q1[0]) * (q3[1] - q1[1]);
@@ -545,7 +549,7 @@ mfs_status mfs_point_set_close_pair(const mfs_point_set *s, double r, int *found
   mfs_box box = {.dim = dim, .periodic = 0};
   double meas = 1.0, q1[2] = {0.0, 0.0}, q3[2] = {0.0, 0.0};
   if (n >= 4)
-    quartile_box(s, q1, q3);
+    quartile_box(s, q1, q3, 0);
   for (int k = 0; k < dim; k++) {
     box.lo[k] = box.hi[k] = s->x[k];
     for (size_t q = 1; q < n; q++) {
