@@ -301,6 +301,13 @@ static void test_far_particle(void)
   double flat[10] = {0, 0, 0, 1, 0, 2, 0, 3, 1, 0}; /* four of five on x = 0 */
   mfs_point_set sf = {.dim = 2, .n = 5, .x = flat};
   CHECK(isnan(mfs_point_set_bulk_spacing(&sf)), "a flat bulk: NAN");
+  sf.n = 3;
+  CHECK(isnan(mfs_point_set_bulk_spacing(&sf)) && isnan(mfs_point_set_bulk_spacing(NULL)),
+        "three particles, no set: NAN");
+  double line[10] = {0.0, 0.3, 0.7, 1.0, 9.0}; /* 1D: quartiles 0.3, 1.0 hold 3 particles */
+  mfs_point_set s1 = {.dim = 1, .n = 5, .x = line};
+  CHECK(mfs_point_set_bulk_spacing(&s1) == 0.35, "1D bulk spacing %.17g, want 0.35",
+        mfs_point_set_bulk_spacing(&s1));
   free(x);
 }
 
