@@ -6,6 +6,7 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "mfs_select.h"
 #include "mfs_status.h"
 
 void mfs_grid_free(mfs_grid *g)
@@ -69,29 +70,50 @@ mfs_grid *mfs_grid_alloc(int dim, size_t n, const double *x, const mfs_box *box,
     g->nc[k] = 1;
     g->h[k] = 1.0;
   }
-  for (int k = 0; k < dim; k++) {
-    double L = box->hi[k] - box->lo[k];
-    if (box->periodic && !(L > 2.0 * radius)) {
-      st = MFS_ETOOSMALL;
-      goto fail;
+  double total = 1.0, cap = 4.0 * (double)n + 4.0, ncd[3] = {1.0, 1.0, 1.0};
+  for (int pass = 0; pass < 2; pass++) {
+    total = 1.0;
+    for (int k = 0; k < dim; k++) {
+      double L = g->box.hi[k] - g->box.lo[k];
+      if (box->periodic && !(L > 2.0 * radius)) {
+        st = MFS_ETOOSMALL;
+        goto fail;
+      }
+      /* cells of side h >= hmin, a little over radius/2: a query scans 5 x 5
+       * cells holding about (5/2)^2 r^2 of points (3 x 3 cells of side radius
+       * hold 9 r^2), and the margin keeps a point within radius at most 2
+       * cells away after rounding of the cell coordinates.  The number of
+       * cells stays bounded by the number of points. */
+      double hmin = 0.5 * radius * (1.0 + 1e-6);
+      want[k] = L > 0.0 ? floor(L / hmin) : 1.0;
+      if (!(want[k] >= 1.0))
+        want[k] = 1.0;
+      total *= want[k];
     }
-    /* cells of side h >= hmin, a little over radius/2: a query scans 5 x 5
-     * cells holding about (5/2)^2 r^2 of points (3 x 3 cells of side radius
-     * hold 9 r^2), and the margin keeps a point within radius at most 2
-     * cells away after rounding of the cell coordinates.  The number of
-     * cells stays bounded by the number of points. */
-    double hmin = 0.5 * radius * (1.0 + 1e-6);
-    want[k] = L > 0.0 ? floor(L / hmin) : 1.0;
-    if (!(want[k] >= 1.0))
-      want[k] = 1.0;
+    /* More cells than the cap below (more than 4 n + 4) means points far
+     * apart for their number: a few far ones (a coordinate with a wrong
+     * exponent) stretch the box, and cells over the whole box would put the
+     * rest in one cell, each query scanning all of them (9 10^4 particles
+     * and one 10^108 away: 14 s of neighbour search).  Then the cells cover
+     * the bulk (the quartiles of each coordinate, widened by their distance
+     * on each side) and the points outside go to the edge cells (the cell
+     * coordinates clamp, and the queries' ranges with them). */
+    if (pass > 0 || !(total > cap) || box->periodic || n < 4)
+      break;
+    double q1[3], q3[3];
+    mfs_quartiles(dim, n, x, q1, q3);
+    for (int k = 0; k < dim; k++) {
+      double w = q3[k] - q1[k];
+      if (w > 0.0) {
+        g->box.lo[k] = fmax(box->lo[k], q1[k] - w);
+        g->box.hi[k] = fmin(box->hi[k], q3[k] + w);
+      }
+    }
   }
   /* at most 4 n + 4 cells in all (a sparse set in a large box): the
    * directions are thinned in proportion, then the finest ones again until
    * the product is within the cap (a direction at one cell takes no share
    * of the thinning: one far point on an axis made 2^31 cells) */
-  double total = 1.0, cap = 4.0 * (double)n + 4.0, ncd[3] = {1.0, 1.0, 1.0};
-  for (int k = 0; k < dim; k++)
-    total *= want[k];
   double shrink = total > cap ? pow(cap / total, 1.0 / dim) : 1.0;
   total = 1.0;
   for (int k = 0; k < dim; k++) {
@@ -107,7 +129,7 @@ mfs_grid *mfs_grid_alloc(int dim, size_t n, const double *x, const mfs_box *box,
     ncd[m] = t;
   }
   for (int k = 0; k < dim; k++) {
-    double L = box->hi[k] - box->lo[k], hmin = 0.5 * radius * (1.0 + 1e-6);
+    double L = g->box.hi[k] - g->box.lo[k], hmin = 0.5 * radius * (1.0 + 1e-6);
     int nc = (int)ncd[k];
     g->nc[k] = nc;
     g->h[k] = L > 0.0 ? L / nc : 1.0;
@@ -166,10 +188,14 @@ static void sort_ints(int *a, size_t n)
 }
 
 /* Distinct cell coordinates along k that may hold points within r of x:
- * span = ceil(radius / h[k]) cells either side (2: cells of side > radius/2). */
+ * span = ceil(radius / h[k]) cells either side (2: cells of side > radius/2)
+ * of x's own cell, wrapped or clamped as the points' are (cell_coord: a
+ * query outside the box, as far as it may be, scans the edge cells where
+ * the points near it are; the cast of its unclamped coordinate to int
+ * overflowed). */
 static int cell_range(const mfs_grid *g, int k, int span, double x, int *out)
 {
-  int c = (int)floor((x - g->box.lo[k]) / g->h[k]), nc = g->nc[k];
+  int c = cell_coord(g, k, x), nc = g->nc[k];
   int m = 0;
   if (!g->box.periodic) {
     int c0 = c - span < 0 ? 0 : c - span, c1 = c + span >= nc ? nc - 1 : c + span;

@@ -10,6 +10,7 @@
 
 #include "mfs_delaunay.h"
 #include "mfs_neighbor.h"
+#include "mfs_select.h"
 #include "mfs_status.h"
 
 void mfs_particles_free(mfs_particles *p)
@@ -436,72 +437,24 @@ fail:
   return NULL;
 }
 
-/* The order of doubles (NaN aside) as the order of unsigned 64-bit keys:
- * a positive value's bits with the sign bit set, a negative value's bits
- * complemented. */
-static uint64_t order_key(double v)
-{
-  uint64_t u;
-  memcpy(&u, &v, sizeof u);
-  return u >> 63 ? ~u : u | (UINT64_C(1) << 63);
-}
-
-static double key_value(uint64_t k)
-{
-  uint64_t u = k >> 63 ? k & ~(UINT64_C(1) << 63) : ~k;
-  double v;
-  memcpy(&v, &u, sizeof v);
-  return v;
-}
-
-/* The k-th smallest (from 0) of v[0], v[stride], ... (n values), by radix selection on the keys,
- * eight bits a pass from the top: 8 passes over v, a 256-bin histogram on
- * the stack, no copy (so nothing to allocate, nothing that can fail).  k is
- * kept as the rank among the values whose keys share the digits chosen. */
-static double kth_smallest(const double *v, size_t n, size_t stride, size_t k)
-{
-  uint64_t prefix = 0, mask = 0;
-  for (int shift = 56; shift >= 0; shift -= 8) {
-    size_t cnt[256] = {0};
-    for (size_t i = 0; i < n; i++) {
-      uint64_t key = order_key(v[i * stride]);
-      if ((key & mask) == prefix)
-        cnt[(key >> shift) & 255u]++;
-    }
-    unsigned d = 0;
-    while (k >= cnt[d]) /* more than k values match the prefix: d stays below 256 */
-      k -= cnt[d++];
-    prefix |= (uint64_t)d << shift;
-    mask |= (uint64_t)255u << shift;
-  }
-  return key_value(prefix);
-}
-
 double mfs_point_set_spacing(const mfs_point_set *s)
 {
   if (!s || !s->vol || s->n < 1)
     return NAN;
   size_t k = s->n / 2;
-  double med = kth_smallest(s->vol, s->n, 1, k);
+  double med = mfs_kth_smallest(s->vol, s->n, 1, k);
   if (s->n % 2 == 0) /* the largest of the lower half */
-    med = 0.5 * (med + kth_smallest(s->vol, s->n, 1, k - 1));
+    med = 0.5 * (med + mfs_kth_smallest(s->vol, s->n, 1, k - 1));
   return s->dim == 1 ? med : sqrt(med);
 }
 
-/* The quartiles q1 <= q3 of each coordinate (ranks (m - 1) / 4 and
- * 3 (m - 1) / 4 of m values: every particle up to 4096 of them, else every
- * step-th particle, 4096 to 8191 of them: the box only sizes cells and
- * scales a tolerance, and 8 selection passes over 10^6 particles per
- * quartile made reading a particle file 0.1-0.2 s slower) and, with count,
- * the number of particles in the box between them (one pass over all). */
+/* The quartiles q1 <= q3 of each coordinate (mfs_quartiles) and, with
+ * count, the number of particles in the box between them (one pass). */
 static size_t quartile_box(const mfs_point_set *s, double q1[2], double q3[2], int count)
 {
   int dim = s->dim;
-  size_t n = s->n, in = 0, step = n > 4096 ? n / 4096 : 1, m = (n - 1) / step + 1;
-  for (int k = 0; k < dim; k++) {
-    q1[k] = kth_smallest(s->x + k, m, (size_t)dim * step, (m - 1) / 4);
-    q3[k] = kth_smallest(s->x + k, m, (size_t)dim * step, 3 * (m - 1) / 4);
-  }
+  size_t n = s->n, in = 0;
+  mfs_quartiles(dim, n, s->x, q1, q3);
   for (size_t i = 0; count && i < n; i++) {
     int inside = 1;
     for (int k = 0; k < dim; k++) {
