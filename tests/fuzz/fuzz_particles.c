@@ -13,7 +13,9 @@
  * one (mfs_model_alloc: plane strain in 2D, support 2.3 spacings, the
  * quadrature chosen by the input's length: nodal, stress points or Gauss
  * points): a refusal is a status, and a model that is built must have a
- * finite, symmetric stiffness and finite masses. */
+ * finite, symmetric stiffness and finite masses; with positive lumped
+ * masses its spectrum (dense, LAPACK) must lie in [0, lambda_gershgorin],
+ * and with a mass <= 0 the Gershgorin bound must say it does not apply. */
 #include "fuzz_common.h" /* first: it defines _GNU_SOURCE (memfd_create) */
 
 #include <math.h>
@@ -22,6 +24,9 @@
 
 #include "mfs_alloc.h"
 #include "particles_csv.h"
+
+#include <lapacke.h>
+#undef I /* complex.h's, through lapacke.h: the particle index below */
 
 static int fd = -1;
 static char path[64];
@@ -50,6 +55,38 @@ static double entry(const mfs_csr *K, size_t j, size_t i)
       hi = mid;
   }
   return lo < K->ptr[j + 1] && (size_t)K->idx[lo] == i ? K->val[lo] : 0.0;
+}
+
+/* With positive lumped masses: the spectrum of M^-1/2 K M^-1/2 (dense,
+ * LAPACK) lies in [0, lambda_gershgorin]: K is positive semidefinite (the
+ * quadrature weights are positive) and the Gershgorin bound is proven. */
+static void check_spectrum(const mfs_model *m)
+{
+  size_t n = m->n;
+  mfs_gershgorin_result gr;
+  if (mfs_gershgorin_csr(m->K, m->m, m->dof, &gr) != MFS_OK)
+    __builtin_trap();
+  if (gr.nonpositive > 0) {
+    if (!isnan(gr.lambda))
+      __builtin_trap(); /* the bound must say it does not apply */
+    return;
+  }
+  double *a = calloc(n * n, sizeof *a), *w = malloc(n * sizeof *w);
+  if (!a || !w)
+    abort();
+  for (size_t i = 0; i < n; i++)
+    for (size_t e = m->K->ptr[i]; e < m->K->ptr[i + 1]; e++) {
+      size_t j = (size_t)m->K->idx[e];
+      a[i * n + j] = m->K->val[e] / sqrt(m->m[i] * m->m[j]);
+    }
+  if (LAPACKE_dsyev(LAPACK_ROW_MAJOR, 'N', 'U', (lapack_int)n, a, (lapack_int)n, w) == 0) {
+    double top = fmax(fabs(w[0]), fabs(w[n - 1]));
+    if (!isfinite(gr.lambda) || w[n - 1] > gr.lambda * (1.0 + 1e-10) + 1e-300 ||
+        w[0] < -1e-9 * top)
+      __builtin_trap();
+  }
+  free(a);
+  free(w);
 }
 
 static void try_model(size_t size)
@@ -86,6 +123,8 @@ static void try_model(size_t size)
     if (m->m && !isfinite(m->m[i]))
       __builtin_trap();
   }
+  if (m->m && m->n <= 2 * FUZZ_MAX_MODEL)
+    check_spectrum(m);
   mfs_model_free(m);
 }
 
