@@ -84,16 +84,11 @@ int main(int argc, char **argv)
     fprintf(stderr, "bench_lambda: NX, NY must be >= 3 and --tol >= 0\n");
     return 2;
   }
-  mfs_model_spec s = bench_plate_spec(nx, ny);
-
   double t0 = bench_now();
   mfs_status st;
-  mfs_model *m = mfs_model_alloc(&s, &st, NULL);
-  if (!m) {
-    fprintf(stderr, "bench_lambda: model: %s\n", mfs_strerror(st));
+  mfs_model *m = bench_plate_model(nx, ny, "bench_lambda");
+  if (!m)
     return 1;
-  }
-  mfs_model_release_plan(m);
   double setup_s = bench_now() - t0;
   if (export_prefix) {
     char pk[4096], pm[4096];

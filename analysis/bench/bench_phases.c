@@ -83,14 +83,10 @@ int main(int argc, char **argv)
     fprintf(stderr, "bench_phases: NX must be 3..3000 and --rounds 1..10000\n");
     return 2;
   }
-  mfs_model_spec s = bench_plate_spec(nx, nx);
   mfs_status st;
-  mfs_model *m = mfs_model_alloc(&s, &st, NULL);
-  if (!m) {
-    fprintf(stderr, "bench_phases: model: %s\n", mfs_strerror(st));
+  mfs_model *m = bench_plate_model(nx, nx, "bench_phases");
+  if (!m)
     return 1;
-  }
-  mfs_model_release_plan(m);
   mfs_pencil P = {m->K, m->M, m->m};
   mfs_lanczos_opts lo = {.tol = 1e-6};
   mfs_lanczos_info li;
