@@ -239,13 +239,16 @@ printf 'x,y,volume\n0,0,0.25\n1,0,-0.25\n0,1,0.25\n' >"$pf/negvol.csv"
 printf 'x,y\n0,0\n1,0\n' >"$pf/two.csv"
 printf '' >"$pf/empty.csv"
 printf 'x,y\n' >"$pf/header.csv"
-# a 4 x 4 lattice and one particle 10^108 away (a coordinate's exponent gone wrong): the
-# duplicate test's cells made 2^31 of them (16 GB, a fuzzer's finding) and its spacing, from
-# the bounding box, called every pair a duplicate; now the far particle is named (line 18),
-# and a real duplicate beside it (line 18 of farpair) still is
+# a 4 x 4 lattice and one particle 10^30 away (a coordinate's exponent gone wrong): the
+# duplicate test's cells made 2^31 of them (16 GB, a fuzzer's finding at 10^108) and its
+# spacing, from the bounding box, called every pair a duplicate; now the far particle is named
+# (line 18), and a real duplicate beside it (line 18 of farpair) still is.  Coordinates beyond
+# 1e30 m and typical spacings below 1e-30 m are refused (the range of --spacing)
 lat=$(for i in 0 1 2 3; do for j in 0 1 2 3; do echo "$i,$j"; done; done)
-printf 'x,y\n%s\n1e108,0.5\n' "$lat" >"$pf/far.csv"
-printf 'x,y\n%s\n1,1\n1e108,0.5\n' "$lat" >"$pf/farpair.csv"
+printf 'x,y\n%s\n1e30,0.5\n' "$lat" >"$pf/far.csv"
+printf 'x,y\n%s\n1,1\n1e30,0.5\n' "$lat" >"$pf/farpair.csv"
+printf 'x,y\n%s\n0.5,1e108\n' "$lat" >"$pf/huge.csv"
+printf 'x,y,volume\n0,0,1e-70\n1,0,1e-70\n0,1,1e-70\n1,1,1e-70\n' >"$pf/tinyvol.csv"
 bad_cmd eigs "missing.csv:4" --particles "$pf/missing.csv" --support 1.5
 bad_cmd eigs "extra.csv:3" --particles "$pf/extra.csv" --support 1.5
 bad_cmd eigs "extracol.csv:1" --particles "$pf/extracol.csv" --support 1.5
@@ -258,8 +261,11 @@ bad_cmd eigs "negvol.csv:3" --particles "$pf/negvol.csv" --support 1.5
 bad_cmd eigs "two.csv:3" --particles "$pf/two.csv" --support 1.5
 bad_cmd eigs "empty.csv:1" --particles "$pf/empty.csv" --support 1.5
 bad_cmd eigs "header.csv:1" --particles "$pf/header.csv" --support 1.5
-bad_cmd eigs "far.csv:18: the particle at (1e+108, 0.5) is" --particles "$pf/far.csv" --support 1.5
+bad_cmd eigs "far.csv:18: the particle at (1e+30, 0.5) is" --particles "$pf/far.csv" --support 1.5
 bad_cmd eigs "farpair.csv:18: the particle at (1, 1) is also on line 7" --particles "$pf/farpair.csv" --support 1.5
+bad_cmd eigs "huge.csv:18: y 1e108: beyond 1e30 m" --particles "$pf/huge.csv" --support 1.5
+bad_cmd bound "tinyvol.csv: typical spacing 1e-35 m" --particles "$pf/tinyvol.csv" --support 1.5
+bad_cmd check --support --particles "$pf/ok.csv" --support 1e31
 bad_cmd eigs "ok.csv:2" --particles "$pf/ok.csv" --support 0.4
 bad_cmd eigs "no group 'wall'" --particles "$pf/groups.csv" --support 1.5 --fix wall
 bad_cmd eigs "no group column" --particles "$pf/ok.csv" --support 1.5 --fix clamp

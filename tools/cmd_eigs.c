@@ -114,10 +114,10 @@ const cli_opt model_opts_table[] = {
   {.name = "--support", .type = CLI_REAL, .arg = "A",
    .help = "the support radius a in metres (instead of --dilation; needed for a particle "
            "file without --smoothing-length)",
-   .offset = MOFF(support), .bounds = CLI_GT, .lo = 0},
+   .offset = MOFF(support), .bounds = CLI_GE | CLI_LE, .lo = 1e-30, .hi = 1e30},
   {.name = "--smoothing-length", .type = CLI_REAL, .arg = "H",
    .help = "a peer code's smoothing length h in metres, mapped by --convention", .offset =
-   MOFF(smoothing_length), .bounds = CLI_GT, .lo = 0},
+   MOFF(smoothing_length), .bounds = CLI_GE | CLI_LE, .lo = 1e-30, .hi = 1e30},
   {.name = "--convention", .type = CLI_TABLE, .arg = "NAME",
    .help = "the peer code whose h and kernel --smoothing-length gives (docs/conventions.md)",
    .offset = MOFF(convention), .find = find_convention,

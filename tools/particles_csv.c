@@ -119,6 +119,18 @@ static void grow(particle_file *pf, size_t *cap, int has_vol, int has_group)
   *cap = c;
 }
 
+/* The range of coordinates and typical spacings (m), that of --spacing:
+ * the shape functions and the triangulation hold their results under a
+ * change of scale from about 1e-50 to 1e50 m and fail beyond (a set at
+ * 1e200 m made every squared distance infinite, and the duplicate test
+ * failed as "out of memory"; at 1e70 m the MLS moment matrices were refused
+ * as singular, at 1e90 m Qhull found no triangulation). */
+#define COORD_MAX 1e30
+#define SPACING_MIN 1e-30
+
+static void coordinate(const particle_file *pf, size_t ln, const char *col, const char *s,
+                       double *v);
+
 static void number(const particle_file *pf, size_t ln, const char *col, const char *s, double *v)
 {
   if (*s == '\0')
@@ -130,6 +142,15 @@ static void number(const particle_file *pf, size_t ln, const char *col, const ch
     cli_die(2, "%s:%zu: %s '%s': %s", pf->path, ln, col, s,
             word ? "not a finite number" : "not a number (decimal, e.g. 0.25 or 2.5e-3)");
   }
+}
+
+static void coordinate(const particle_file *pf, size_t ln, const char *col, const char *s,
+                       double *v)
+{
+  number(pf, ln, col, s, v);
+  if (!(fabs(*v) <= COORD_MAX))
+    cli_die(2, "%s:%zu: %s %s: beyond 1e30 m in magnitude; allowed |%s| <= 1e30 (as --spacing)",
+            pf->path, ln, col, s, col);
 }
 
 void particle_file_read(particle_file *pf, const char *path, double min_dist)
@@ -191,10 +212,10 @@ void particle_file_read(particle_file *pf, const char *path, double min_dist)
     for (int i = 0; i < k; i++) {
       switch (col[i]) {
       case COL_X:
-        number(pf, ln, "x", fields[i], &pf->x[I * pf->dim]);
+        coordinate(pf, ln, "x", fields[i], &pf->x[I * pf->dim]);
         break;
       case COL_Y:
-        number(pf, ln, "y", fields[i], &pf->x[I * pf->dim + 1]);
+        coordinate(pf, ln, "y", fields[i], &pf->x[I * pf->dim + 1]);
         break;
       case COL_VOLUME: {
         double v;
@@ -251,8 +272,10 @@ void particle_file_read(particle_file *pf, const char *path, double min_dist)
   int found = 0;
   size_t i = 0, j = 0;
   double r = min_dist * (dx > 0.0 ? dx : 1.0);
-  if (r > 0.0 && mfs_point_set_close_pair(&pf->set, r, &found, &i, &j) != MFS_OK)
-    cli_die(1, "%s: out of memory", path);
+  mfs_status st = r > 0.0 && isfinite(r) ? mfs_point_set_close_pair(&pf->set, r, &found, &i, &j)
+                                          : MFS_OK;
+  if (st != MFS_OK)
+    cli_die(st == MFS_ENOMEM ? 1 : 2, "%s: the duplicate test: %s", path, mfs_strerror(st));
   if (found) {
     size_t a = pf->line[i] > pf->line[j] ? i : j, b = a == i ? j : i;
     if (pf->dim == 1)
@@ -333,6 +356,11 @@ void particle_file_volumes(particle_file *pf)
     pf->set.vol = pf->vol;
   }
   pf->set.spacing = mfs_point_set_spacing(&pf->set);
+  if (!(pf->set.spacing >= SPACING_MIN && pf->set.spacing <= COORD_MAX))
+    cli_die(2, "%s: typical spacing %g m (%s): allowed 1e-30 to 1e30 m, as --spacing", pf->path,
+            pf->set.spacing,
+            pf->dual_volumes ? "the median of the volumes of the set's cells"
+                             : "the median of the volume column");
 }
 
 void particle_file_free(particle_file *pf)
