@@ -2,7 +2,8 @@
  * discretization and physics options and options of every other kind (lists
  * of numbers, integers, flags, a positional argument), then the descriptor
  * built from them (cli_disc_build, mfs_disc_check) and, when the work is
- * small, the stencil of the rule (mfs_stencil), checked finite.
+ * small, the stencil of the rule (mfs_stencil), checked finite, and a
+ * finite model of its lattice (small_model).
  *
  * The input is the command line, one argument per line (at most 32).  A
  * refusal (cli_die) returns to the fuzzer through cli_die_hook; a crash, a
@@ -60,6 +61,33 @@ static void free_lists(void)
   o.dilation.v = e.stress.v = e.kappa.v = NULL;
 }
 
+/* A finite box of the descriptor's lattice (1D: 13 particles, 2D: 7 x 7,
+ * perturbed by 0.3 dx for inputs of odd length), built as eigs builds one
+ * and checked (fuzz_check_model): finite, symmetric, and with positive
+ * lumped masses a spectrum within [0, lambda_gershgorin]. */
+static void small_model(const mfs_disc *d, size_t size)
+{
+  mfs_model_spec sp = {.disc = *d, .fixed = MFS_FIX_NONE};
+  mfs_source *src = &sp.disc.source;
+  double dx = src->spacing > 0.0 ? src->spacing : 1.0, g = src->gamma > 0.0 ? src->gamma : 1.0;
+  int nx = d->dim == 1 ? 13 : 7;
+  src->nx = nx;
+  src->ny = d->dim == 1 ? 0 : 7;
+  src->lx = dx * (nx - 1);
+  src->ly = d->dim == 1 ? 0.0 : dx * g * 6.0;
+  src->perturb = size % 2 ? 0.3 : 0.0;
+  src->seed = 2385;
+  if (mfs_model_spec_check(&sp, NULL) != MFS_OK ||
+      mfs_disc_plan_entries(&sp.disc, (double)nx * (d->dim == 1 ? 1.0 : 7.0), NULL) > 2e4)
+    return;
+  mfs_status st;
+  mfs_model *m = mfs_model_alloc(&sp, &st, NULL);
+  if (!m)
+    return; /* a refusal: a status the tools name */
+  fuzz_check_model(m);
+  mfs_model_free(m);
+}
+
 static void small_work(const mfs_disc *d)
 {
   double side = 4.0 * ceil(2.0 * d->dilation) + 4.0; /* the periodic box of mfs_stencil */
@@ -111,8 +139,10 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
     cli_parse(argc, argv, "usage: fuzz [OPTIONS]", "", groups, 3);
     mfs_disc d = cli_disc_build(&o, seen_disc);
     const char *field = NULL;
-    if (mfs_disc_check(&d, &field) == MFS_OK)
+    if (mfs_disc_check(&d, &field) == MFS_OK) {
       small_work(&d);
+      small_model(&d, size);
+    }
   }
   free_lists();
   mfs_free(buf);

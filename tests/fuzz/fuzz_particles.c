@@ -25,9 +25,6 @@
 #include "mfs_alloc.h"
 #include "particles_csv.h"
 
-#include <lapacke.h>
-#undef I /* complex.h's, through lapacke.h: the particle index below */
-
 static int fd = -1;
 static char path[64];
 
@@ -42,52 +39,6 @@ int LLVMFuzzerInitialize(int *argc, char ***argv)
 static particle_file pf;
 
 #define FUZZ_MAX_MODEL 120
-
-/* Row j's entry in column i (sorted rows), 0 if absent. */
-static double entry(const mfs_csr *K, size_t j, size_t i)
-{
-  size_t lo = K->ptr[j], hi = K->ptr[j + 1];
-  while (lo < hi) {
-    size_t mid = lo + (hi - lo) / 2;
-    if ((size_t)K->idx[mid] < i)
-      lo = mid + 1;
-    else
-      hi = mid;
-  }
-  return lo < K->ptr[j + 1] && (size_t)K->idx[lo] == i ? K->val[lo] : 0.0;
-}
-
-/* With positive lumped masses: the spectrum of M^-1/2 K M^-1/2 (dense,
- * LAPACK) lies in [0, lambda_gershgorin]: K is positive semidefinite (the
- * quadrature weights are positive) and the Gershgorin bound is proven. */
-static void check_spectrum(const mfs_model *m)
-{
-  size_t n = m->n;
-  mfs_gershgorin_result gr;
-  if (mfs_gershgorin_csr(m->K, m->m, m->dof, &gr) != MFS_OK)
-    __builtin_trap();
-  if (gr.nonpositive > 0) {
-    if (!isnan(gr.lambda))
-      __builtin_trap(); /* the bound must say it does not apply */
-    return;
-  }
-  double *a = calloc(n * n, sizeof *a), *w = malloc(n * sizeof *w);
-  if (!a || !w)
-    abort();
-  for (size_t i = 0; i < n; i++)
-    for (size_t e = m->K->ptr[i]; e < m->K->ptr[i + 1]; e++) {
-      size_t j = (size_t)m->K->idx[e];
-      a[i * n + j] = m->K->val[e] / sqrt(m->m[i] * m->m[j]);
-    }
-  if (LAPACKE_dsyev(LAPACK_ROW_MAJOR, 'N', 'U', (lapack_int)n, a, (lapack_int)n, w) == 0) {
-    double top = fmax(fabs(w[0]), fabs(w[n - 1]));
-    if (!isfinite(gr.lambda) || w[n - 1] > gr.lambda * (1.0 + 1e-10) + 1e-300 ||
-        w[0] < -1e-9 * top)
-      __builtin_trap();
-  }
-  free(a);
-  free(w);
-}
 
 static void try_model(size_t size)
 {
@@ -109,22 +60,7 @@ static void try_model(size_t size)
   mfs_model *m = mfs_model_alloc(&sp, &st, NULL);
   if (!m)
     return; /* a refusal: the tools name it */
-  const mfs_csr *K = m->K;
-  double kmax = 0.0;
-  for (size_t e = 0; e < K->ptr[m->n]; e++) {
-    if (!isfinite(K->val[e]))
-      __builtin_trap();
-    kmax = fmax(kmax, fabs(K->val[e]));
-  }
-  for (size_t i = 0; i < m->n; i++) {
-    for (size_t e = K->ptr[i]; e < K->ptr[i + 1]; e++)
-      if (fabs(K->val[e] - entry(K, (size_t)K->idx[e], i)) > 1e-10 * kmax)
-        __builtin_trap();
-    if (m->m && !isfinite(m->m[i]))
-      __builtin_trap();
-  }
-  if (m->m && m->n <= 2 * FUZZ_MAX_MODEL)
-    check_spectrum(m);
+  fuzz_check_model(m);
   mfs_model_free(m);
 }
 
