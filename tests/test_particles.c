@@ -252,6 +252,29 @@ static void test_close_pair(gsl_rng *r)
   mfs_point_set_close_pair(&s, 1e-12, &found, &i, &j);
   CHECK(found && i == 77 && j == 1234, "a duplicate: %d %zu %zu", found, i, j);
   CHECK(mfs_point_set_close_pair(&s, 0.0, &found, &i, &j) == MFS_EINVAL, "r = 0: EINVAL");
+  /* many duplicates, some in one cell, some in clusters of copies (a cell's
+   * scan stops at its first point with a partner): the first pair by index,
+   * as brute force finds it */
+  for (size_t k = 0; k < 40; k++) {
+    size_t a = (k * 977 + 13) % n, b = (k * 331 + 1500) % n;
+    x[2 * b] = x[2 * a];
+    x[2 * b + 1] = x[2 * a + 1];
+  }
+  for (size_t k = 1700; k < 1800; k++) { /* 100 copies of particle 1699 */
+    x[2 * k] = x[2 * 1699];
+    x[2 * k + 1] = x[2 * 1699 + 1];
+  }
+  bi = bj = n;
+  for (size_t a = 0; a < n && bi == n; a++)
+    for (size_t b = a + 1; b < n; b++)
+      if (x[2 * a] == x[2 * b] && x[2 * a + 1] == x[2 * b + 1]) {
+        bi = a;
+        bj = b;
+        break;
+      }
+  CHECK(mfs_point_set_close_pair(&s, 1e-12, &found, &i, &j) == MFS_OK && found && i == bi &&
+          j == bj,
+        "the first of many duplicates: %zu %zu (brute force %zu %zu)", i, j, bi, bj);
   free(x);
 }
 
