@@ -266,6 +266,12 @@ bad_cmd eigs "farpair.csv:18: the particle at (1, 1) is also on line 7" --partic
 bad_cmd eigs "huge.csv:18: y 1e108: beyond 1e30 m" --particles "$pf/huge.csv" --support 1.5
 bad_cmd bound "tinyvol.csv: typical spacing 1e-35 m" --particles "$pf/tinyvol.csv" --support 1.5
 bad_cmd check --support --particles "$pf/ok.csv" --support 1e31
+# the work of a particle file: its pairs within the support, counted (a cluster or a support as
+# wide as the set made the plan take 12 GB and minutes); --max-entries as on lattices
+bad_cmd eigs "more than 10 particle pairs within it" --particles "$pf/ok.csv" --support 1.5 \
+  --max-entries 10
+awk 'BEGIN{print "x,y"; for(i=0;i<200;i++) for(j=0;j<200;j++) print i","j}' >"$pf/wide.csv"
+bad_cmd bound "more than 5e+08 particle pairs within it" --particles "$pf/wide.csv" --support 500
 bad_cmd eigs "ok.csv:2" --particles "$pf/ok.csv" --support 0.4
 bad_cmd eigs "no group 'wall'" --particles "$pf/groups.csv" --support 1.5 --fix wall
 bad_cmd eigs "no group column" --particles "$pf/ok.csv" --support 1.5 --fix clamp

@@ -1,6 +1,7 @@
-/* The cell grid and the neighbour lists (lib/core/mfs_neighbor.h) against
- * a brute-force search with the same distance arithmetic: uniform sets in
- * 1D and 2D, a periodic box, queries inside and outside the box, and sets
+/* The cell grid, the neighbour lists and their count without lists
+ * (lib/core/mfs_neighbor.h) against a brute-force search with the same
+ * distance arithmetic: uniform sets in 1D and 2D, rows of hundreds, a
+ * periodic box, queries inside and outside the box, and sets
  * with a few particles 10^12 to 10^108 away (a coordinate with a wrong
  * exponent).  For those the grid must keep the bulk spread over its cells:
  * with cells over the whole stretched box, every bulk particle fell in one
@@ -51,6 +52,16 @@ static size_t compare(const char *what, int dim, size_t n, const double *x, cons
       bad += got != m || memcmp(nl->idx + nl->ptr[q], want, m * sizeof *want) != 0;
     }
     CHECK(bad == 0, "%s: %zu of %zu lists differ from brute force", what, bad, nq);
+    /* the count without lists: all of them, and stopped past a limit */
+    double all = (double)nl->ptr[nq], cnt = -1.0, part = -1.0, lim = 0.3 * all;
+    size_t longest = 0;
+    for (size_t q = 0; q < nq; q++)
+      longest = nl->ptr[q + 1] - nl->ptr[q] > longest ? nl->ptr[q + 1] - nl->ptr[q] : longest;
+    CHECK(mfs_grid_count(g, nq, xq, r, 1e300, &cnt) == MFS_OK && cnt == all,
+          "%s: counted %.0f pairs, the lists hold %.0f", what, cnt, all);
+    CHECK(mfs_grid_count(g, nq, xq, r, lim, &part) == MFS_OK && part > lim &&
+            part <= lim + (double)longest,
+          "%s: the count stopped at %.0f past %.0f (longest list %zu)", what, part, lim, longest);
   }
   free(want);
   mfs_nlist_free(nl);
@@ -116,6 +127,35 @@ static void test_sets(gsl_rng *rng)
     }
 }
 
+/* Wide supports: rows of hundreds (sorted by qsort past 64 entries), and
+ * the particle set's own count (mfs_point_set_neighbours) against the
+ * lists. */
+static void test_wide(gsl_rng *rng)
+{
+  size_t n = 3000;
+  double *x = points(rng, 2, n, 0);
+  if (!x) {
+    CHECK(0, "allocation");
+    return;
+  }
+  mfs_box box;
+  bounding_box(2, n, x, &box);
+  compare("2D, rows of hundreds", 2, n, x, &box, n, x, 0.2);
+  mfs_point_set s = {.dim = 2, .n = n, .x = x};
+  mfs_status st;
+  mfs_grid *g = mfs_grid_alloc(2, n, x, &box, 0.2, &st);
+  mfs_nlist *nl = g ? mfs_nlist_build(g, n, x, 0.2, &st) : NULL;
+  double c = -1.0;
+  CHECK(nl && mfs_point_set_neighbours(&s, 0.2, 1e300, &c) == MFS_OK && c == (double)nl->ptr[n],
+        "the set's pairs within 0.2: %.0f, the lists %zu", c, nl ? nl->ptr[n] : 0);
+  CHECK(mfs_point_set_neighbours(&s, 0.0, 1e300, &c) == MFS_EINVAL &&
+          mfs_point_set_neighbours(&s, 0.2, -1.0, &c) == MFS_EINVAL,
+        "r = 0, limit < 0: EINVAL");
+  mfs_nlist_free(nl);
+  mfs_grid_free(g);
+  free(x);
+}
+
 /* A periodic box: the minimum image, queries wrapped from outside. */
 static void test_periodic(gsl_rng *rng)
 {
@@ -141,6 +181,7 @@ int main(void)
   gsl_rng *rng = gsl_rng_alloc(gsl_rng_mt19937);
   gsl_rng_set(rng, 2385);
   test_sets(rng);
+  test_wide(rng);
   test_periodic(rng);
   gsl_rng_free(rng);
   return check_summary("test_neighbor");

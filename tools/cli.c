@@ -641,19 +641,28 @@ double cli_available_memory(void)
 
 void cli_check_work(const cli_disc *o, const mfs_disc *d, double n, const char *what)
 {
-  double entries = mfs_disc_plan_entries(d, n, NULL);
+  cli_check_entries(o, d, n, mfs_disc_plan_entries(d, n, NULL), what,
+                    "the dilation or the nodes");
+}
+
+void cli_check_entries(const cli_disc *o, const mfs_disc *d, double n, double entries,
+                       const char *what, const char *lower)
+{
   double lim = o->max_entries > 0.0 ? o->max_entries : CLI_MAX_ENTRIES;
   if (!(entries <= lim))
     cli_die(2, "%s: about %.3g neighbour entries in the plan, more than --max-entries %.3g%s; "
-               "lower the dilation or the nodes, or raise --max-entries",
-            what, entries, lim, o->max_entries > 0.0 ? "" : " (the default)");
+               "lower %s, or raise --max-entries",
+            what, entries, lim, o->max_entries > 0.0 ? "" : " (the default)", lower);
   if (o->max_entries > 0.0)
     return; /* the user's own limit: no memory check */
-  double bytes = mfs_disc_model_bytes(d, n), mem = available_memory();
+  double est = mfs_disc_plan_entries(d, n, NULL), bytes = mfs_disc_model_bytes(d, n);
+  if (est > 0.0 && entries > est)
+    bytes *= entries / est; /* a clustered set: its counted entries */
+  double mem = available_memory();
   if (mem > 0.0 && bytes > mem)
-    cli_die(2, "%s: needs about %.3g GB, and %.3g GB of memory are available; lower the "
-               "dilation or the nodes, or give --max-entries to try anyway",
-            what, bytes / 1e9, mem / 1e9);
+    cli_die(2, "%s: needs about %.3g GB, and %.3g GB of memory are available; lower %s, or "
+               "give --max-entries to try anyway",
+            what, bytes / 1e9, mem / 1e9, lower);
 }
 
 _Noreturn void cli_die_status(mfs_status status, const cli_disc *d, double dilation,

@@ -143,15 +143,23 @@ void cli_disc_defaults(cli_disc *d);
  * dimension, quadrature and lattice, plane strain in 2D) die with one line. */
 mfs_disc cli_disc_build(const cli_disc *o, const unsigned char *seen_disc);
 
-/* A limit on the work: die (exit 2) when a plan of d on n particles would
- * hold more than o->max_entries neighbour entries (mfs_disc_plan_entries),
- * naming what makes it large (`what`: "--dilation 40 on 10^6 nodes") and the
- * override --max-entries. */
 /* The memory this process may still take, in bytes (0 if unknown): the
  * least of MemAvailable, a cgroup v2 limit less its use, and RLIMIT_AS. */
 double cli_available_memory(void);
 
+/* A limit on the work: die (exit 2) when a plan of d on n particles would
+ * hold more than o->max_entries neighbour entries (mfs_disc_plan_entries),
+ * naming what makes it large (`what`: "--dilation 40 on 10^6 nodes") and the
+ * override --max-entries; without that override, also when its model would
+ * need more than the memory available (mfs_disc_model_bytes). */
 void cli_check_work(const cli_disc *o, const mfs_disc *d, double n, const char *what);
+
+/* The same for a plan of `entries` neighbour entries counted (not
+ * estimated): a particle file, whose particles may cluster (the memory
+ * estimate scaled by entries over the lattice estimate); `lower` says what
+ * to lower ("the dilation or the nodes"). */
+void cli_check_entries(const cli_disc *o, const mfs_disc *d, double n, double entries,
+                       const char *what, const char *lower);
 
 /* Die with the right message and code for a library status met while
  * building the discretization of o (what: where it happened). */

@@ -176,8 +176,21 @@ void mfs_nlist_free(mfs_nlist *nl)
 }
 
 /* Rows are short (tens of entries): insertion sort beats qsort here. */
+static int cmp_int(const void *a, const void *b)
+{
+  int x = *(const int *)a, y = *(const int *)b;
+  return (x > y) - (x < y);
+}
+
+/* Ascending; insertion for the short rows of a discretization (tens of
+ * entries, few out of order), qsort beyond: a row of 20 000 neighbours (a
+ * cluster of particles) took 4 10^8 moves by insertion. */
 static void sort_ints(int *a, size_t n)
 {
+  if (n > 64) {
+    qsort(a, n, sizeof *a, cmp_int);
+    return;
+  }
   for (size_t i = 1; i < n; i++) {
     int v = a[i];
     size_t j = i;
@@ -327,6 +340,38 @@ fail:
   if (status)
     *status = st;
   return NULL;
+}
+
+mfs_status mfs_grid_count(const mfs_grid *g, size_t nq, const double *xq, double r, double limit,
+                          double *count)
+{
+  *count = 0.0;
+  if (!(r > 0.0) || r > g->radius || !(limit >= 0.0))
+    return MFS_EINVAL;
+  int dim = g->dim, per = g->box.periodic;
+  double r2 = r * r, L[3], total = 0.0;
+  for (int k = 0; k < 3; k++)
+    L[k] = g->box.hi[k] - g->box.lo[k];
+  int rng[3][64], span[3], nr[3] = {1, 1, 1};
+  for (int k = 0; k < dim; k++)
+    span[k] = (int)ceil(g->radius / g->h[k]);
+  rng[1][0] = rng[2][0] = 0;
+  for (size_t q = 0; q < nq && total <= limit; q++) {
+    const double *y = xq + q * dim;
+    for (int k = 0; k < dim; k++)
+      nr[k] = cell_range(g, k, span[k], y[k], rng[k]);
+    size_t m = 0;
+    for (int c2 = 0; c2 < nr[2]; c2++)
+      for (int c1 = 0; c1 < nr[1]; c1++)
+        for (int c0 = 0; c0 < nr[0]; c0++) {
+          size_t c = ((size_t)rng[2][c2] * g->nc[1] + rng[1][c1]) * g->nc[0] + rng[0][c0];
+          for (size_t s = g->start[c]; s < g->start[c + 1]; s++)
+            m += dist2(dim, per, L, y, g->x + (size_t)g->item[s] * dim) < r2;
+        }
+    total += (double)m;
+  }
+  *count = total;
+  return MFS_OK;
 }
 
 mfs_nlist *mfs_nlist_transpose(const mfs_nlist *nl, size_t n, mfs_status *status)

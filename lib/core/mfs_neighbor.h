@@ -46,6 +46,14 @@ typedef struct {
 mfs_nlist *mfs_nlist_build(const mfs_grid *g, size_t nq, const double *xq, double r, mfs_status *status);
 void mfs_nlist_free(mfs_nlist *nl);
 
+/* The number of (query, point) pairs within r <= g->radius that
+ * mfs_nlist_build would list, without the lists: memory O(1), time that of
+ * the scan, which stops once the count exceeds limit (*count is then the
+ * partial count, > limit).  For a limit on the work before a plan is built
+ * where the points may cluster (a particle file).  MFS_OK, MFS_EINVAL. */
+mfs_status mfs_grid_count(const mfs_grid *g, size_t nq, const double *xq, double r, double limit,
+                          double *count);
+
 /* The search of a moving discretization: the lists of the n points x (dim
  * coordinates each, in box) within r of each of the nq query points xq,
  * through a grid built and dropped; on success *lists (freed) is replaced

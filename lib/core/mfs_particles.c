@@ -486,6 +486,30 @@ double mfs_point_set_bulk_spacing(const mfs_point_set *s)
   return area > 0.0 && isfinite(area) && in >= 2 ? sqrt(area / (double)in) : NAN;
 }
 
+mfs_status mfs_point_set_neighbours(const mfs_point_set *s, double r, double limit, double *count)
+{
+  *count = 0.0;
+  if (!s || (s->dim != 1 && s->dim != 2) || !s->x || !(r > 0.0) || !isfinite(r) ||
+      !(limit >= 0.0) || !coords_finite(s))
+    return MFS_EINVAL;
+  mfs_box box = {.dim = s->dim, .periodic = 0};
+  for (int k = 0; k < s->dim; k++) {
+    box.lo[k] = box.hi[k] = s->x[k];
+    for (size_t q = 1; q < s->n; q++) {
+      double v = s->x[q * (size_t)s->dim + (size_t)k];
+      box.lo[k] = fmin(box.lo[k], v);
+      box.hi[k] = fmax(box.hi[k], v);
+    }
+  }
+  mfs_status st;
+  mfs_grid *g = mfs_grid_alloc(s->dim, s->n, s->x, &box, r, &st);
+  if (!g)
+    return st;
+  st = mfs_grid_count(g, s->n, s->x, r, limit, count);
+  mfs_grid_free(g);
+  return st;
+}
+
 mfs_status mfs_point_set_close_pair(const mfs_point_set *s, double r, int *found, size_t *i,
                                     size_t *j)
 {

@@ -155,6 +155,14 @@ mfs_particles *mfs_particles_from_set(const mfs_point_set *s, int cells, mfs_sta
  * particles or more on one coordinate value).  Allocates nothing. */
 double mfs_point_set_bulk_spacing(const mfs_point_set *s);
 
+/* The pairs (i, j), i = j included, of particles closer than r > 0 (the
+ * neighbour entries of a plan whose points are the particles), counted with
+ * cell lists without storing them; the count stops once it exceeds limit
+ * (*count then > limit): a bound on the work before a plan is built, where
+ * a particle file's particles may cluster.  MFS_OK, MFS_EINVAL (also for a
+ * coordinate not finite), MFS_ENOMEM. */
+mfs_status mfs_point_set_neighbours(const mfs_point_set *s, double r, double limit, double *count);
+
 /* Two particles of the set closer than r > 0, found with cell lists (O(n);
  * the cells over the bulk of the set, so that a few far particles do not
  * gather it into one cell): *found = 1 and *i < *j their indices (the pair
