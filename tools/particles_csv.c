@@ -9,6 +9,7 @@
 #include <string.h>
 
 #include "cli.h"
+#include "mfs_select.h"
 
 enum { COL_X, COL_Y, COL_VOLUME, COL_GROUP, NCOLS };
 static const char *const col_names[NCOLS] = {"x", "y", "volume", "group"};
@@ -127,9 +128,6 @@ static void grow(particle_file *pf, size_t *cap, int has_vol, int has_group)
  * as singular, at 1e90 m Qhull found no triangulation). */
 #define COORD_MAX 1e30
 #define SPACING_MIN 1e-30
-
-static void coordinate(const particle_file *pf, size_t ln, const char *col, const char *s,
-                       double *v);
 
 static void number(const particle_file *pf, size_t ln, const char *col, const char *s, double *v)
 {
@@ -290,12 +288,6 @@ void particle_file_read(particle_file *pf, const char *path, double min_dist)
   }
 }
 
-static int cmp_double(const void *a, const void *b)
-{
-  double x = *(const double *)a, y = *(const double *)b;
-  return (x > y) - (x < y);
-}
-
 /* The particle farthest from the set's median point and its distance in
  * typical spacings of the bulk (0 if it cannot be told), for the message
  * when the set has no triangulation: a particle 10^9 spacings away (a
@@ -304,19 +296,11 @@ static int cmp_double(const void *a, const void *b)
 static double far_particle(const particle_file *pf, size_t *far)
 {
   double h = mfs_point_set_bulk_spacing(&pf->set), med[2] = {0.0, 0.0}, best = 0.0;
-  double *c = mfs_malloc(pf->n * sizeof *c);
   *far = 0;
-  if (!(h > 0.0) || !c) {
-    mfs_free(c);
+  if (!(h > 0.0))
     return 0.0;
-  }
-  for (int k = 0; k < pf->dim; k++) { /* an error's path: a sort will do */
-    for (size_t I = 0; I < pf->n; I++)
-      c[I] = pf->x[I * (size_t)pf->dim + (size_t)k];
-    qsort(c, pf->n, sizeof *c, cmp_double);
-    med[k] = c[pf->n / 2];
-  }
-  mfs_free(c);
+  for (int k = 0; k < pf->dim; k++)
+    med[k] = mfs_kth_smallest(pf->x + k, pf->n, (size_t)pf->dim, pf->n / 2);
   for (size_t I = 0; I < pf->n; I++) {
     double d = 0.0;
     for (int k = 0; k < pf->dim; k++)

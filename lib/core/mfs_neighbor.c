@@ -175,7 +175,6 @@ void mfs_nlist_free(mfs_nlist *nl)
   mfs_free(nl);
 }
 
-/* Rows are short (tens of entries): insertion sort beats qsort here. */
 static int cmp_int(const void *a, const void *b)
 {
   int x = *(const int *)a, y = *(const int *)b;
@@ -183,8 +182,9 @@ static int cmp_int(const void *a, const void *b)
 }
 
 /* Ascending; insertion for the short rows of a discretization (tens of
- * entries, few out of order), qsort beyond: a row of 20 000 neighbours (a
- * cluster of particles) took 4 10^8 moves by insertion. */
+ * entries, few out of order: it beats qsort there), qsort beyond: a row of
+ * 20 000 neighbours (a cluster of particles) took 4 10^8 moves by
+ * insertion. */
 static void sort_ints(int *a, size_t n)
 {
   if (n > 64) {
