@@ -486,12 +486,9 @@ double mfs_point_set_bulk_spacing(const mfs_point_set *s)
   return area > 0.0 && isfinite(area) && in >= 2 ? sqrt(area / (double)in) : NAN;
 }
 
-mfs_status mfs_point_set_neighbours(const mfs_point_set *s, double r, double limit, double *count)
+/* The set's bounding box (not periodic). */
+static mfs_box set_box(const mfs_point_set *s)
 {
-  *count = 0.0;
-  if (!s || (s->dim != 1 && s->dim != 2) || !s->x || !(r > 0.0) || !isfinite(r) ||
-      !(limit >= 0.0) || !coords_finite(s))
-    return MFS_EINVAL;
   mfs_box box = {.dim = s->dim, .periodic = 0};
   for (int k = 0; k < s->dim; k++) {
     box.lo[k] = box.hi[k] = s->x[k];
@@ -501,6 +498,16 @@ mfs_status mfs_point_set_neighbours(const mfs_point_set *s, double r, double lim
       box.hi[k] = fmax(box.hi[k], v);
     }
   }
+  return box;
+}
+
+mfs_status mfs_point_set_neighbours(const mfs_point_set *s, double r, double limit, double *count)
+{
+  *count = 0.0;
+  if (!s || (s->dim != 1 && s->dim != 2) || !s->x || !(r > 0.0) || !isfinite(r) ||
+      !(limit >= 0.0) || !coords_finite(s))
+    return MFS_EINVAL;
+  mfs_box box = set_box(s);
   mfs_status st;
   mfs_grid *g = mfs_grid_alloc(s->dim, s->n, s->x, &box, r, &st);
   if (!g)
@@ -523,17 +530,11 @@ mfs_status mfs_point_set_close_pair(const mfs_point_set *s, double r, int *found
   if (!coords_finite(s))
     return MFS_EINVAL;
   int dim = s->dim;
-  mfs_box box = {.dim = dim, .periodic = 0};
+  mfs_box box = set_box(s);
   double meas = 1.0, q1[2] = {0.0, 0.0}, q3[2] = {0.0, 0.0};
   if (n >= 4)
     quartile_box(s, q1, q3, 0);
   for (int k = 0; k < dim; k++) {
-    box.lo[k] = box.hi[k] = s->x[k];
-    for (size_t q = 1; q < n; q++) {
-      double v = s->x[q * dim + k];
-      box.lo[k] = v < box.lo[k] ? v : box.lo[k];
-      box.hi[k] = v > box.hi[k] ? v : box.hi[k];
-    }
     /* the grid over the bulk, the quartiles widened by their distance on
      * each side: a few far particles go to the edge cells (the cells clamp)
      * instead of stretching every cell, which put the bulk in one cell */
